@@ -1,0 +1,12 @@
+# Turns each kernel source into a C++ string (raw literal) in one generated file, with a
+# lookup function gridrt::embeddedKernelSource(name). Headers under kernels/shared are
+# embedded too so that '#include' inside kernels resolves without the source tree.
+function(gridrt_embed_kernels output)
+  set(sources ${ARGN})
+  add_custom_command(
+    OUTPUT ${output}
+    COMMAND ${CMAKE_COMMAND} -DOUTPUT=${output} "-DSOURCES=${sources}"
+            -DROOT=${CMAKE_SOURCE_DIR}/kernels -P ${CMAKE_SOURCE_DIR}/cmake/EmbedKernelsScript.cmake
+    DEPENDS ${sources} ${CMAKE_SOURCE_DIR}/cmake/EmbedKernelsScript.cmake
+    COMMENT "Embedding OpenCL kernel sources")
+endfunction()
