@@ -13,6 +13,9 @@
 #ifndef GRIDRT_GRID_DDA_H
 #define GRIDRT_GRID_DDA_H
 #include "gridrt_types.h"
+#ifndef __OPENCL_C_VERSION__
+#include <math.h>
+#endif
 
 #ifdef __OPENCL_C_VERSION__
 #define GR_INF INFINITY

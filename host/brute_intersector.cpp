@@ -1,0 +1,48 @@
+#include "brute_intersector.h"
+
+#include "stopwatch.h"
+
+namespace gridrt {
+
+namespace {
+constexpr int kLanes = 16;      // rays per work-item (float16)
+constexpr int kLocalSize = 8;   // work-items per work-group: fixed, so PoCL compiles once
+}  // namespace
+
+BruteIntersector::BruteIntersector(ClRuntime& runtime, const std::vector<GrTriangle>& triangles)
+    : rt_(runtime), triangle_count_(int(triangles.size())) {
+  kernel_ = cl::Kernel(rt_.program("brute.cl"), "brute_intersect");
+  triangles_.upload(rt_, triangles);
+}
+
+void BruteIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
+                                 std::vector<GrHit>& hits, RayDiagnostics* diagnostics) {
+  Stopwatch clock;
+  size_t n = rays.size();
+  hits.resize(n);
+  if (n > 0) {
+    rays_.upload(rt_, rays);
+    hits_.reserve(rt_, n);
+    kernel_.setArg(0, rays_.get());
+    kernel_.setArg(1, int(n));
+    kernel_.setArg(2, triangles_.get());
+    kernel_.setArg(3, triangle_count_);
+    kernel_.setArg(4, mode == HitMode::AnyHit ? 1 : 0);
+    kernel_.setArg(5, hits_.get());
+    size_t items = (n + kLanes - 1) / kLanes;
+    size_t global = (items + kLocalSize - 1) / kLocalSize * kLocalSize;
+    rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global),
+                                     cl::NDRange(kLocalSize));
+    hits_.download(rt_, hits.data(), n);
+  }
+  counters_.rays += n;
+  counters_.tests += uint64_t(n) * triangle_count_;
+  counters_.kernel_ms += clock.ms();
+  if (diagnostics) {
+    diagnostics->tests.assign(n, triangle_count_);
+    diagnostics->winning_pe.assign(n, -1);
+    diagnostics->list_length.assign(n, 0);
+  }
+}
+
+}  // namespace gridrt

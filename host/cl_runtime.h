@@ -1,0 +1,65 @@
+// The OpenCL runtime: one object owning the chosen device, its context, its in-order
+// queue and the programs built for it (RAII through opencl.hpp's reference counting).
+#pragma once
+#include <CL/opencl.hpp>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace gridrt {
+
+struct DeviceInfo {
+  int platform_index = 0;
+  int device_index = 0;
+  std::string platform_name;
+  std::string name;
+  std::string type;  // "CPU", "GPU", "accelerator", ...
+  unsigned compute_units = 0;
+  size_t max_work_group_size = 0;
+  unsigned long long local_mem_bytes = 0;
+  unsigned long long global_mem_bytes = 0;
+  unsigned long long max_alloc_bytes = 0;
+  bool correctly_rounded_div_sqrt = false;
+};
+
+// Every device of every platform, in platform:device order. Empty if no platform exists.
+std::vector<DeviceInfo> listDevices();
+
+// A table of the devices for `gridrt --list-devices`.
+std::string formatDeviceTable(const std::vector<DeviceInfo>& devices);
+
+// The kernel source of `file` (e.g. "gridrt_pe.cl") with its `#include "x.h"` lines
+// replaced by the embedded headers from kernels/shared, so no file is read at run time.
+std::string assembleKernelSource(const std::string& file);
+
+class ClRuntime {
+ public:
+  // spec: "" picks the first device of any type; "P:D" by index; else a case-insensitive
+  // substring of the device name. Throws UsageError for an unknown device, RenderError
+  // when no OpenCL platform is installed.
+  explicit ClRuntime(const std::string& spec);
+
+  const DeviceInfo& info() const { return info_; }
+  cl::Context& context() { return context_; }
+  cl::CommandQueue& queue() { return queue_; }
+
+  // Builds (once per file and options) the program of a kernel file. Prints nothing;
+  // a build failure throws RenderError carrying the device's build log.
+  cl::Program& program(const std::string& file, const std::string& defines = "");
+
+  // Throws RenderError naming `what` if a buffer of `bytes` exceeds the device's limits.
+  void checkAllocation(size_t bytes, const std::string& what) const;
+
+ private:
+  DeviceInfo info_;
+  cl::Device device_;
+  cl::Context context_;
+  cl::CommandQueue queue_;
+  std::map<std::string, cl::Program> programs_;
+};
+
+// A one-line description of an OpenCL error code (e.g. "CL_OUT_OF_RESOURCES").
+std::string clErrorName(int code);
+
+}  // namespace gridrt

@@ -1,0 +1,52 @@
+// A device buffer of T that grows when a batch needs more room and is otherwise reused,
+// so nothing is allocated per frame once the largest batch has been seen.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "cl_runtime.h"
+
+namespace gridrt {
+
+template <typename T>
+class DeviceBuffer {
+ public:
+  explicit DeviceBuffer(std::string what, cl_mem_flags flags = CL_MEM_READ_WRITE)
+      : what_(std::move(what)), flags_(flags) {}
+
+  // Makes room for `count` elements (at least one, since OpenCL forbids empty buffers).
+  cl::Buffer& reserve(ClRuntime& rt, size_t count) {
+    count = count ? count : 1;
+    if (count > capacity_) {
+      size_t grown = std::max(count, capacity_ + capacity_ / 2);
+      rt.checkAllocation(grown * sizeof(T), what_);
+      buffer_ = cl::Buffer(rt.context(), flags_, grown * sizeof(T));
+      capacity_ = grown;
+    }
+    return buffer_;
+  }
+
+  cl::Buffer& upload(ClRuntime& rt, const T* data, size_t count) {
+    reserve(rt, count);
+    if (count) rt.queue().enqueueWriteBuffer(buffer_, CL_FALSE, 0, count * sizeof(T), data);
+    return buffer_;
+  }
+  cl::Buffer& upload(ClRuntime& rt, const std::vector<T>& data) {
+    return upload(rt, data.data(), data.size());
+  }
+
+  void download(ClRuntime& rt, T* data, size_t count) {
+    if (count) rt.queue().enqueueReadBuffer(buffer_, CL_TRUE, 0, count * sizeof(T), data);
+  }
+
+  cl::Buffer& get() { return buffer_; }
+  size_t capacity() const { return capacity_; }
+
+ private:
+  std::string what_;
+  cl_mem_flags flags_;
+  cl::Buffer buffer_;
+  size_t capacity_ = 0;
+};
+
+}  // namespace gridrt

@@ -1,0 +1,69 @@
+#include "frame_statistics.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "errors.h"
+
+namespace gridrt {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+namespace {
+void flatten(const nlohmann::json& j, const std::string& prefix,
+             std::vector<std::pair<std::string, std::string>>& rows) {
+  if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end(); ++it)
+      flatten(it.value(), prefix.empty() ? it.key() : prefix + "." + it.key(), rows);
+    return;
+  }
+  std::string value;
+  if (j.is_number_float()) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.4g", j.get<double>());
+    value = buf;
+  } else if (j.is_string()) {
+    value = j.get<std::string>();
+  } else {
+    value = j.dump();
+  }
+  rows.emplace_back(prefix, value);
+}
+}  // namespace
+
+std::string formatStatisticsTable(const nlohmann::json& stats) {
+  std::vector<std::pair<std::string, std::string>> rows;
+  flatten(stats, "", rows);
+  size_t width = 0;
+  for (const auto& r : rows) width = std::max(width, r.first.size());
+  std::ostringstream os;
+  for (const auto& r : rows) os << r.first << std::string(width + 2 - r.first.size(), ' ') << r.second << '\n';
+  return os.str();
+}
+
+void writeJsonFile(const std::string& path, const nlohmann::json& stats) {
+  std::string temp = path + ".tmp" + std::to_string(::getpid());
+  {
+    std::ofstream out(temp);
+    out << stats.dump(2) << '\n';
+    if (!out) {
+      std::remove(temp.c_str());
+      throw RenderError("cannot write '" + path + "'");
+    }
+  }
+  if (std::rename(temp.c_str(), path.c_str()) != 0) {
+    std::remove(temp.c_str());
+    throw RenderError("cannot write '" + path + "'");
+  }
+}
+
+}  // namespace gridrt

@@ -1,0 +1,34 @@
+// Statistics of a run (--stats, --stats-json): per-phase times as medians over the
+// repeated frames, ray counts, and the grid/PE figures of the GridRT architecture.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace gridrt {
+
+double median(std::vector<double> values);
+
+// Summary of a list of counts: mean and max.
+struct MeanMax {
+  double mean = 0;
+  double max = 0;
+};
+template <typename T>
+MeanMax meanMax(const std::vector<T>& values) {
+  MeanMax m;
+  for (const auto& v : values) {
+    m.mean += double(v);
+    m.max = std::max(m.max, double(v));
+  }
+  if (!values.empty()) m.mean /= double(values.size());
+  return m;
+}
+
+// A readable two-column table of the JSON statistics (nested keys joined by '.').
+std::string formatStatisticsTable(const nlohmann::json& stats);
+
+// Writes JSON to path through a temporary file (never half-written).
+void writeJsonFile(const std::string& path, const nlohmann::json& stats);
+
+}  // namespace gridrt

@@ -1,0 +1,53 @@
+// The GridRT intersector (Nery et al.): traversal lists on the host, one work-group per
+// PE task on the device (phase 1: one in-voxel hit per ray and PE), and the phase-2
+// reduction on the host (the first PE in a ray's list holding a hit wins).
+#pragma once
+#include "cl_runtime.h"
+#include "device_buffer.h"
+#include "intersector.h"
+#include "pe_binning.h"
+#include "traversal_lists.h"
+#include "uniform_grid.h"
+
+namespace gridrt {
+
+// Work-items per PE work-group (fixed: each new local size is a new compile on PoCL).
+// Each work-item tests 16 rays in float16 lanes, so one task holds up to 64 rays.
+constexpr int kPeLocalSize = 4;
+constexpr int kPeLanes = 16;
+constexpr int kPeTaskRays = kPeLocalSize * kPeLanes;
+
+class GridRtIntersector : public Intersector {
+ public:
+  // interrupt: emulate the paper's interrupt chain on the device (a PE skips a ray once
+  // an earlier PE of the ray's list has a hit).
+  GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid, bool interrupt);
+  std::string name() const override { return interrupt_ ? "gridrt-interrupt" : "gridrt"; }
+  void intersect(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
+                 RayDiagnostics* diagnostics) override;
+
+  // Rays and tests each PE received, summed over all batches (load balance).
+  const std::vector<uint64_t>& raysPerPe() const { return rays_per_pe_; }
+  const std::vector<uint64_t>& testsPerPe() const { return tests_per_pe_; }
+  uint64_t maxListLength() const { return max_list_length_; }
+
+ private:
+  ClRuntime& rt_;
+  const UniformGrid& grid_;
+  bool interrupt_;
+  cl::Kernel kernel_;
+  TraversalLists lists_;
+  PeBins bins_;
+  std::vector<GrHit> slot_hits_;
+  std::vector<uint64_t> rays_per_pe_, tests_per_pe_;
+  uint64_t max_list_length_ = 0;
+  DeviceBuffer<int> pe_tri_begin_{"the PE offsets", CL_MEM_READ_ONLY};
+  DeviceBuffer<GrTriangle> pe_triangles_{"the PE triangles", CL_MEM_READ_ONLY};
+  DeviceBuffer<GrRay> rays_{"the ray batch", CL_MEM_READ_ONLY};
+  DeviceBuffer<GrPeEntry> entries_{"the PE inputs", CL_MEM_READ_ONLY};
+  DeviceBuffer<GrPeTask> tasks_{"the PE tasks", CL_MEM_READ_ONLY};
+  DeviceBuffer<GrHit> slot_hits_dev_{"the per-PE hits", CL_MEM_READ_WRITE};
+  DeviceBuffer<int> first_hit_slot_{"the interrupt flags", CL_MEM_READ_WRITE};
+};
+
+}  // namespace gridrt

@@ -1,0 +1,46 @@
+// The intersector interface: every implementation (brute, dda, gridrt, reference) takes a
+// batch of rays and returns, per ray, the closest hit in (tmin, tmax) — smallest t, and
+// on equal t the lowest global triangle index — or, in AnyHit mode, some hit (shadows).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gridrt_types.h"
+
+namespace gridrt {
+
+enum class HitMode { Closest, AnyHit };
+
+// Work and time counted over all batches since the last reset.
+struct IntersectCounters {
+  uint64_t rays = 0;
+  uint64_t tests = 0;         // ray-triangle tests executed
+  uint64_t list_entries = 0;  // (ray, PE) pairs (gridrt)
+  uint64_t skipped_pairs = 0; // pairs skipped by the emulated interrupt
+  double lists_ms = 0;        // traversal lists and binning on the host
+  double kernel_ms = 0;       // upload + kernel + download
+  double reduce_ms = 0;       // phase-2 reduction on the host
+};
+
+// Per-ray diagnostics for AOVs, filled when requested.
+struct RayDiagnostics {
+  std::vector<int> tests;        // ray-triangle tests the ray cost
+  std::vector<int> winning_pe;   // PE that produced the hit, -1 if none
+  std::vector<int> list_length;  // number of PEs in the ray's traversal list
+};
+
+class Intersector {
+ public:
+  virtual ~Intersector() = default;
+  virtual std::string name() const = 0;
+  // hits is resized to rays.size(). diagnostics may be null.
+  virtual void intersect(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
+                         RayDiagnostics* diagnostics) = 0;
+  IntersectCounters& counters() { return counters_; }
+
+ protected:
+  IntersectCounters counters_;
+};
+
+}  // namespace gridrt

@@ -1,0 +1,184 @@
+#include "options.h"
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <regex>
+
+#include "errors.h"
+
+namespace gridrt {
+
+namespace {
+
+const char* const kAovNames[] = {"depth", "primid", "normal", "tests", "pe", "listlen"};
+
+glm::vec3 parseVec3(const std::string& flag, const std::string& text) {
+  static const std::regex three(R"(^\s*([^,]+),([^,]+),([^,]+)\s*$)");
+  std::smatch m;
+  glm::vec3 v;
+  try {
+    if (!std::regex_match(text, m, three)) throw std::invalid_argument(text);
+    for (int i = 0; i < 3; ++i) {
+      size_t used = 0;
+      v[i] = std::stof(m[i + 1].str(), &used);
+      if (used != size_t(m[i + 1].length()) || !std::isfinite(v[i])) throw std::invalid_argument(text);
+    }
+  } catch (const std::exception&) {
+    throw UsageError(flag + ": expected X,Y,Z (three finite numbers), got '" + text + "'");
+  }
+  return v;
+}
+
+void parseGrid(const std::string& text, GridSettings& grid) {
+  if (text == "auto") {
+    grid.automatic = true;
+    return;
+  }
+  static const std::regex dims(R"(^(\d{1,4}),(\d{1,4}),(\d{1,4})$)");
+  std::smatch m;
+  if (!std::regex_match(text, m, dims))
+    throw UsageError("--grid: expected 'auto' or NX,NY,NZ, got '" + text + "'");
+  glm::ivec3 n(std::stoi(m[1]), std::stoi(m[2]), std::stoi(m[3]));
+  for (int a = 0; a < 3; ++a)
+    if (n[a] < 1 || n[a] > kMaxGridResolution)
+      throw UsageError("--grid: each resolution must be in 1.." +
+                       std::to_string(kMaxGridResolution) + ", got '" + text + "'");
+  grid.automatic = false;
+  grid.dims = n;
+}
+
+void parseRayOffset(const std::string& text, RayOffset& offset) {
+  if (text == "robust") {
+    offset.robust = true;
+    return;
+  }
+  static const std::regex eps(R"(^epsilon=(.+)$)");
+  std::smatch m;
+  float e = -1.0f;
+  if (std::regex_match(text, m, eps)) {
+    try {
+      size_t used = 0;
+      e = std::stof(m[1].str(), &used);
+      if (used != size_t(m[1].length())) e = -1.0f;
+    } catch (const std::exception&) {
+      e = -1.0f;
+    }
+  }
+  if (!(e >= 0.0f) || !std::isfinite(e))
+    throw UsageError("--ray-offset: expected 'robust' or 'epsilon=E' with E >= 0, got '" + text + "'");
+  offset.robust = false;
+  offset.epsilon = e;
+}
+
+struct RawOptions {
+  std::string accel = "gridrt", grid = "auto", background, ray_offset = "robust", look_at;
+  std::vector<std::string> aovs;
+};
+
+void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
+  app.description(
+      "GridRT: a Whitted ray tracer on OpenCL, with the GridRT parallel architecture\n"
+      "(uniform grid, one processing element per non-empty voxel, two-phase reduction).\n"
+      "Without SCENE it renders the built-in default scene.");
+  app.add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb)");
+  app.add_option("-o,--output", o.output, "output image: .png/.jpg (sRGB) or .exr (linear)")
+      ->capture_default_str();
+  app.add_option("--width", o.width, "image width in pixels")->capture_default_str()
+      ->check(CLI::Range(1, 65536));
+  app.add_option("--height", o.height, "image height in pixels")->capture_default_str()
+      ->check(CLI::Range(1, 65536));
+  app.add_option("--spp", o.spp, "samples per pixel (jittered when > 1)")->capture_default_str()
+      ->check(CLI::Range(1, 4096));
+  app.add_option("--max-depth", o.max_depth, "reflection/refraction bounces")
+      ->capture_default_str()->check(CLI::Range(0, 64));
+  app.add_option("--device", o.device, "OpenCL device: P:D or part of its name (default: first)");
+  app.add_flag("--list-devices", o.list_devices, "list OpenCL devices and exit");
+  app.add_option("--accel", raw.accel, "intersector: gridrt, dda or brute")
+      ->capture_default_str()->check(CLI::IsMember({"gridrt", "dda", "brute"}));
+  app.add_option("--grid", raw.grid, "grid resolution: auto or NX,NY,NZ")->capture_default_str();
+  app.add_option("--grid-density", o.grid.density,
+                 "lambda of the auto resolution R_i = d_i*cbrt(lambda*N/V)")
+      ->capture_default_str()->check(CLI::Range(0.001f, 1000.0f));
+  app.add_flag("--pe-interrupt", o.pe_interrupt,
+               "gridrt: a PE skips rays already hit by an earlier PE (the paper's interrupt)");
+  app.add_flag("--primary-only", o.primary_only,
+               "primary rays only, headlight shading (the paper's measurement)");
+  app.add_option("--aov", raw.aovs,
+                 "NAME=FILE (repeatable; .exr): depth, primid, normal, tests, pe, listlen");
+  app.add_option("--repeat", o.repeat, "render N more frames after the first, for timing")
+      ->capture_default_str()->check(CLI::Range(0, 100000));
+  app.add_option("--stats-json", o.stats_json, "write statistics as JSON to FILE");
+  app.add_flag("--stats", o.stats, "print a statistics table");
+  app.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
+  app.add_option("--background", raw.background, "background colour R,G,B (linear)");
+  app.add_option("--ambient", o.ambient, "ambient factor (times diffuse albedo)")
+      ->capture_default_str()->check(CLI::Range(0.0f, 1000.0f));
+  app.add_option("--ray-offset", raw.ray_offset,
+                 "secondary ray origins: robust (scale-aware) or epsilon=E")
+      ->capture_default_str();
+  app.add_option("--camera", o.camera_name, "use the glTF camera with this name");
+  app.add_option("--look-at", raw.look_at, "EX,EY,EZ:TX,TY,TZ camera eye and target");
+  app.add_option("--fov", o.fov_degrees, "vertical field of view in degrees")
+      ->check(CLI::Range(0.01f, 179.0f));
+  app.set_version_flag("--version", std::string("gridrt ") + GRIDRT_VERSION);
+}
+
+void finish(Options& o, const RawOptions& raw) {
+  o.accel = raw.accel == "dda" ? AccelKind::Dda
+            : raw.accel == "brute" ? AccelKind::Brute : AccelKind::GridRt;
+  parseGrid(raw.grid, o.grid);
+  parseRayOffset(raw.ray_offset, o.ray_offset);
+  if (!raw.background.empty()) o.background = parseVec3("--background", raw.background);
+  if (!raw.look_at.empty()) {
+    size_t colon = raw.look_at.find(':');
+    if (colon == std::string::npos)
+      throw UsageError("--look-at: expected EX,EY,EZ:TX,TY,TZ, got '" + raw.look_at + "'");
+    o.eye = parseVec3("--look-at", raw.look_at.substr(0, colon));
+    o.target = parseVec3("--look-at", raw.look_at.substr(colon + 1));
+    if (*o.eye == *o.target) throw UsageError("--look-at: eye and target are the same point");
+  }
+  for (const auto& spec : raw.aovs) {
+    size_t eq = spec.find('=');
+    std::string name = eq == std::string::npos ? spec : spec.substr(0, eq);
+    bool known = false;
+    for (const char* k : kAovNames) known |= name == k;
+    if (eq == std::string::npos || eq + 1 == spec.size() || !known)
+      throw UsageError("--aov: expected NAME=FILE with NAME one of depth, primid, normal, tests, "
+                       "pe, listlen; got '" + spec + "'");
+    o.aovs.emplace_back(name, spec.substr(eq + 1));
+  }
+}
+
+}  // namespace
+
+std::optional<Options> parseCommandLine(int argc, const char* const* argv) {
+  Options o;
+  RawOptions raw;
+  CLI::App app{"", "gridrt"};
+  buildApp(app, o, raw);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return std::nullopt;
+  } catch (const CLI::CallForVersion&) {
+    std::cout << app.version() << '\n';
+    return std::nullopt;
+  } catch (const CLI::ParseError& e) {
+    std::string what = e.what();
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    throw UsageError(what + " (see gridrt --help)");
+  }
+  finish(o, raw);
+  return o;
+}
+
+std::string helpText() {
+  Options o;
+  RawOptions raw;
+  CLI::App app{"", "gridrt"};
+  buildApp(app, o, raw);
+  return app.help();
+}
+
+}  // namespace gridrt

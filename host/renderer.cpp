@@ -1,0 +1,279 @@
+#include "renderer.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "bounds.h"
+#include "camera_rays.h"
+#include "prepared_triangles.h"
+#include "stopwatch.h"
+
+namespace gridrt {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// A light for scenes without one: at the camera, raised by a tenth of the distance to the
+// scene's centre, delivering an irradiance of pi there, so a white Lambert surface facing
+// it renders at its albedo.
+Light defaultLight(const Scene& scene, const Camera& camera) {
+  Bounds b = sceneBounds(scene);
+  glm::vec3 eye(camera.world[3]);
+  glm::vec3 up = glm::normalize(glm::vec3(camera.world[1]));
+  float d = glm::length(b.center() - eye);
+  Light l;
+  l.type = LightType::Point;
+  l.position = eye + 0.1f * d * up;
+  float dl = glm::length(b.center() - l.position);
+  l.intensity = kPi * dl * dl;
+  return l;
+}
+
+GrRay makeRay(const glm::vec3& o, const glm::vec3& d, float tmax) {
+  return GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, tmax};
+}
+
+glm::vec3 reflectDirection(const glm::vec3& d, const glm::vec3& n) {
+  return d - 2.0f * glm::dot(d, n) * n;
+}
+
+}  // namespace
+
+Renderer::Renderer(const Scene& scene, const Camera& camera, Intersector& intersector,
+                   RenderSettings settings)
+    : scene_(scene), camera_(camera), intersector_(intersector), settings_(settings) {
+  geometric_normals_.resize(scene.triangleCount());
+  for (size_t t = 0; t < scene.triangleCount(); ++t) {
+    glm::vec3 n = glm::cross(scene.positions[3 * t + 1] - scene.positions[3 * t],
+                             scene.positions[3 * t + 2] - scene.positions[3 * t]);
+    float len = glm::length(n);
+    geometric_normals_[t] = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
+  }
+  lights_ = scene.has_lights ? scene.lights : std::vector<Light>{defaultLight(scene, camera)};
+}
+
+void Renderer::traceBatched(const std::vector<GrRay>& rays, HitMode mode,
+                            std::vector<GrHit>& hits, RayDiagnostics* diagnostics, double& ms) {
+  Stopwatch clock;
+  if (rays.size() <= kMaxBatchRays) {
+    intersector_.intersect(rays, mode, hits, diagnostics);
+  } else {
+    hits.resize(rays.size());
+    RayDiagnostics part;
+    if (diagnostics) *diagnostics = RayDiagnostics{};
+    for (size_t first = 0; first < rays.size(); first += kMaxBatchRays) {
+      size_t count = std::min(kMaxBatchRays, rays.size() - first);
+      batch_rays_.assign(rays.begin() + first, rays.begin() + first + count);
+      intersector_.intersect(batch_rays_, mode, batch_hits_, diagnostics ? &part : nullptr);
+      std::copy(batch_hits_.begin(), batch_hits_.end(), hits.begin() + first);
+      if (diagnostics) {
+        auto append = [](std::vector<int>& to, const std::vector<int>& from) {
+          to.insert(to.end(), from.begin(), from.end());
+        };
+        append(diagnostics->tests, part.tests);
+        append(diagnostics->winning_pe, part.winning_pe);
+        append(diagnostics->list_length, part.list_length);
+      }
+    }
+  }
+  ms += clock.ms();
+}
+
+void Renderer::render(Frame& frame, const std::function<void(int, int)>& progress) {
+  Stopwatch frame_clock, clock;
+  const int w = settings_.width, h = settings_.height, spp = std::max(1, settings_.spp);
+  const size_t pixels = size_t(w) * h;
+  frame.rays = RayCounts{};
+  frame.times = FrameTimes{};
+  radiance_.assign(pixels, glm::vec3(0.0f));
+
+  // Primary rays: pixel-major, spp samples each (the pixel centre when spp == 1).
+  rays_.resize(pixels * spp);
+  paths_.resize(pixels * spp);
+#pragma omp parallel for schedule(static)
+  for (long long p = 0; p < (long long)pixels; ++p) {
+    for (int s = 0; s < spp; ++s) {
+      float sx = 0.5f, sy = 0.5f;
+      if (spp > 1) jitter(uint32_t(p), uint32_t(s), sx, sy);
+      size_t k = size_t(p) * spp + s;
+      rays_[k] = cameraRay(camera_, w, h, int(p % w), int(p / w), sx, sy);
+      paths_[k] = PathRay{int(p), glm::vec3(1.0f / float(spp)), RayKind::Primary};
+    }
+  }
+  frame.times.generate_ms = clock.ms();
+
+  RayDiagnostics diagnostics;
+  int total_stages = settings_.primary_only ? 1 : settings_.max_depth + 1;
+  for (int depth = 0; !rays_.empty() && depth <= settings_.max_depth; ++depth) {
+    bool first = depth == 0;
+    for (const auto& path : paths_) {
+      if (path.kind == RayKind::Primary) ++frame.rays.primary;
+      else if (path.kind == RayKind::Reflection) ++frame.rays.reflection;
+      else ++frame.rays.refraction;
+    }
+    traceBatched(rays_, HitMode::Closest, hits_,
+                 first && settings_.want_diagnostics ? &diagnostics : nullptr,
+                 frame.times.intersect_ms);
+    if (first) {
+      auto& a = frame.aovs;
+      a.depth.assign(pixels, -1.0f);
+      a.primid.assign(pixels, -1.0f);
+      a.normal.assign(pixels * 3, 0.0f);
+      bool diag = settings_.want_diagnostics;
+      a.tests.assign(diag ? pixels : 0, 0.0f);
+      a.pe.assign(diag ? pixels : 0, -1.0f);
+      a.list_length.assign(diag ? pixels : 0, 0.0f);
+      for (size_t p = 0; p < pixels; ++p) {
+        const GrHit& hit = hits_[p * spp];
+        if (hit.prim >= 0) {
+          a.depth[p] = hit.t;
+          a.primid[p] = float(hit.prim);
+          for (int c = 0; c < 3; ++c) a.normal[3 * p + c] = geometric_normals_[hit.prim][c];
+        }
+        if (diag) {
+          a.tests[p] = float(diagnostics.tests[p * spp]);
+          a.pe[p] = float(diagnostics.winning_pe[p * spp]);
+          a.list_length[p] = float(diagnostics.list_length[p * spp]);
+        }
+      }
+    }
+    shadeGeneration(depth, frame);
+    if (progress) progress(depth + 1, total_stages);
+    if (settings_.primary_only) break;
+  }
+
+  frame.film.width = w;
+  frame.film.height = h;
+  frame.film.rgb.resize(pixels * 3);
+  for (size_t p = 0; p < pixels; ++p)
+    for (int c = 0; c < 3; ++c) frame.film.rgb[3 * p + c] = radiance_[p][c];
+  frame.times.frame_ms = frame_clock.ms();
+}
+
+void Renderer::shadeGeneration(int depth, Frame& frame) {
+  Stopwatch clock;
+  const size_t n = rays_.size();
+  const size_t lights = lights_.size();
+  const bool spawn = !settings_.primary_only && depth < settings_.max_depth;
+  // Fixed slots per ray (one shadow ray per light, reflection + refraction) keep the
+  // parallel loop free of shared appends; compacted afterwards in ray order.
+  ray_radiance_.assign(n, glm::vec3(0.0f));
+  std::vector<glm::vec3>& local = ray_radiance_;
+  shadow_rays_.assign(n * lights, GrRay{0, 0, 0, 0, 0, 0, 0, -1.0f});
+  shadows_.assign(n * lights, ShadowRay{-1, glm::vec3(0.0f)});
+  next_rays_.assign(n * 2, GrRay{0, 0, 0, 0, 0, 0, 0, -1.0f});
+  next_paths_.assign(n * 2, PathRay{-1, glm::vec3(0.0f), RayKind::Reflection});
+
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (long long i = 0; i < (long long)n; ++i) {
+    const GrRay& ray = rays_[i];
+    const PathRay& path = paths_[i];
+    const GrHit& hit = hits_[i];
+    glm::vec3 d(ray.dx, ray.dy, ray.dz);
+    if (hit.prim < 0) {
+      local[i] = path.weight * settings_.background;
+      continue;
+    }
+    const int tri = hit.prim;
+    const Material& mat = scene_.materials[scene_.material_of[tri]];
+    glm::vec3 weight = path.weight;
+    glm::vec3 p = glm::vec3(ray.ox, ray.oy, ray.oz) + hit.t * d;
+    glm::vec3 ng = geometric_normals_[tri];
+    glm::vec3 n = ng;
+    if (!scene_.normals.empty()) {
+      glm::vec3 s = (1.0f - hit.u - hit.v) * scene_.normals[3 * tri] +
+                    hit.u * scene_.normals[3 * tri + 1] + hit.v * scene_.normals[3 * tri + 2];
+      float len = glm::length(s);
+      if (len > 0.0f) n = s / len;
+    }
+    bool backface = glm::dot(ng, d) > 0.0f;
+    if (backface) ng = -ng;
+    if (glm::dot(n, ng) < 0.0f) n = -n;
+    if (settings_.primary_only) {
+      local[i] = weight * mat.base_color * std::fabs(glm::dot(n, d));
+      continue;
+    }
+    // Beer-Lambert absorption inside a transmissive volume (KHR_materials_volume).
+    if (backface && mat.transmission > 0.0f && mat.attenuation_distance > 0.0f)
+      weight *= glm::pow(glm::max(mat.attenuation_color, glm::vec3(1e-6f)),
+                         glm::vec3(hit.t / mat.attenuation_distance));
+    SurfaceTerms terms = surfaceTerms(mat);
+    local[i] = weight * (mat.emissive + settings_.ambient * terms.diffuse);
+    glm::vec3 above = offsetRayOrigin(p, ng, settings_.ray_offset);
+    for (size_t l = 0; l < lights; ++l) {
+      glm::vec3 to_light;
+      float distance;
+      glm::vec3 e = lightIrradiance(lights_[l], p, to_light, distance);
+      float cos_theta = glm::dot(n, to_light);
+      if (cos_theta <= 0.0f || glm::dot(ng, to_light) <= 0.0f || glm::length(e) == 0.0f) continue;
+      glm::vec3 r = reflectDirection(-to_light, n);
+      float rv = std::max(0.0f, glm::dot(r, -d));
+      glm::vec3 direct = terms.diffuse / kPi * e * cos_theta +
+                         terms.specular * e * (terms.phong_exponent + 2.0f) / (2.0f * kPi) *
+                             std::pow(rv, terms.phong_exponent);
+      glm::vec3 contribution = weight * direct;
+      if (glm::length(contribution) == 0.0f) continue;
+      size_t k = size_t(i) * lights + l;
+      shadow_rays_[k] = makeRay(above, to_light, distance);
+      shadows_[k] = ShadowRay{path.pixel, contribution};
+    }
+    if (!spawn) continue;
+    glm::vec3 reflect_weight = terms.mirror;
+    if (terms.transmission > 0.0f) {
+      float eta = backface ? mat.ior : 1.0f / mat.ior;
+      float f = fresnelDielectric(-glm::dot(d, n), eta);
+      glm::vec3 t_dir;
+      if (f < 1.0f && refractDirection(d, n, eta, t_dir) && glm::dot(t_dir, ng) < 0.0f) {
+        glm::vec3 t_weight = weight * terms.transmission * (1.0f - f) * mat.base_color;
+        next_rays_[2 * i + 1] = makeRay(offsetRayOrigin(p, -ng, settings_.ray_offset), t_dir, kInf);
+        next_paths_[2 * i + 1] = PathRay{path.pixel, t_weight, RayKind::Refraction};
+      } else {
+        f = 1.0f;  // total internal reflection
+      }
+      reflect_weight += glm::vec3(terms.transmission * f);
+    }
+    if (glm::length(reflect_weight) > 0.0f) {
+      glm::vec3 r = reflectDirection(d, n);
+      if (glm::dot(r, ng) <= 0.0f) r = reflectDirection(d, ng);  // keep it above the surface
+      next_rays_[2 * i] = makeRay(above, r, kInf);
+      next_paths_[2 * i] = PathRay{path.pixel, weight * reflect_weight, RayKind::Reflection};
+    }
+  }
+  for (size_t i = 0; i < n; ++i) radiance_[paths_[i].pixel] += local[i];
+  frame.times.shade_ms += clock.ms();
+
+  // Shadow rays: any hit before the light means the light is occluded.
+  size_t kept = 0;
+  for (size_t k = 0; k < shadows_.size(); ++k)
+    if (shadows_[k].pixel >= 0) {
+      shadow_rays_[kept] = shadow_rays_[k];
+      shadows_[kept++] = shadows_[k];
+    }
+  shadow_rays_.resize(kept);
+  shadows_.resize(kept);
+  frame.rays.shadow += kept;
+  if (kept) {
+    traceBatched(shadow_rays_, HitMode::AnyHit, shadow_hits_, nullptr, frame.times.intersect_ms);
+    for (size_t k = 0; k < kept; ++k)
+      if (shadow_hits_[k].prim < 0) radiance_[shadows_[k].pixel] += shadows_[k].radiance;
+  }
+
+  // The next generation: compact the spawned reflection/refraction rays.
+  kept = 0;
+  for (size_t k = 0; k < next_paths_.size(); ++k)
+    if (next_paths_[k].pixel >= 0) {
+      next_rays_[kept] = next_rays_[k];
+      next_paths_[kept++] = next_paths_[k];
+    }
+  next_rays_.resize(kept);
+  next_paths_.resize(kept);
+  std::swap(rays_, next_rays_);
+  std::swap(paths_, next_paths_);
+}
+
+}  // namespace gridrt

@@ -1,0 +1,97 @@
+// The Whitted renderer: a wavefront loop on the host. Generate a batch of rays, have the
+// intersector find their hits on the device, shade on the host (all cores), spawn the
+// next batch (shadow rays per light, reflection and refraction), until max depth.
+#pragma once
+#include <array>
+#include <functional>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "image_output.h"
+#include "intersector.h"
+#include "scene.h"
+#include "whitted_shading.h"
+
+namespace gridrt {
+
+struct RenderSettings {
+  int width = 640;
+  int height = 480;
+  int spp = 1;            // samples per pixel: jittered inside the pixel when > 1
+  int max_depth = 5;      // reflection/refraction bounces after the primary hit
+  bool primary_only = false;  // primary rays with headlight shading (the paper's measurement)
+  glm::vec3 background{0.0f};  // colour of rays that miss (black, as in the paper)
+  float ambient = 0.05f;  // ambient radiance factor: ambient * diffuse albedo, lit or not
+  RayOffset ray_offset;   // how secondary ray origins leave the surface
+  bool want_diagnostics = false;  // fill tests / PE / list-length AOVs of primary rays
+};
+
+// Rays traced per kind in one frame.
+struct RayCounts {
+  uint64_t primary = 0, shadow = 0, reflection = 0, refraction = 0;
+  uint64_t total() const { return primary + shadow + reflection + refraction; }
+};
+
+// Primary-ray AOVs (sample 0 of each pixel).
+struct PrimaryAovs {
+  std::vector<float> depth;   // t of the primary hit (unit direction), -1 on a miss
+  std::vector<float> primid;  // global triangle index, -1 on a miss
+  std::vector<float> normal;  // geometric normal (xyz), 0 on a miss
+  std::vector<float> tests;   // ray-triangle tests of the primary ray
+  std::vector<float> pe;      // winning PE, -1 on a miss
+  std::vector<float> list_length;  // PEs in the traversal list
+};
+
+struct FrameTimes {
+  double generate_ms = 0, intersect_ms = 0, shade_ms = 0, frame_ms = 0;
+};
+
+struct Frame {
+  Film film;
+  PrimaryAovs aovs;
+  RayCounts rays;
+  FrameTimes times;
+};
+
+// Rays at or beyond this count are traced in several batches, bounding device memory.
+constexpr size_t kMaxBatchRays = size_t(1) << 18;
+
+class Renderer {
+ public:
+  Renderer(const Scene& scene, const Camera& camera, Intersector& intersector,
+           RenderSettings settings);
+  // Renders one frame. progress(done, total) is called between wavefront stages.
+  void render(Frame& frame, const std::function<void(int, int)>& progress = {});
+
+ private:
+  enum class RayKind : uint8_t { Primary, Reflection, Refraction };
+  struct PathRay {
+    int pixel;
+    glm::vec3 weight;  // throughput from the camera to this ray
+    RayKind kind;
+  };
+  struct ShadowRay {
+    int pixel;
+    glm::vec3 radiance;  // added to the pixel if the shadow ray reaches the light
+  };
+  void traceBatched(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
+                    RayDiagnostics* diagnostics, double& ms);
+  void shadeGeneration(int depth, Frame& frame);
+
+  const Scene& scene_;
+  Camera camera_;
+  Intersector& intersector_;
+  RenderSettings settings_;
+  std::vector<glm::vec3> geometric_normals_;  // per triangle, unit
+  std::vector<Light> lights_;                 // the scene's, or the default light
+
+  // Reused between frames: the current generation, its hits, spawned rays.
+  std::vector<GrRay> rays_, next_rays_, shadow_rays_, batch_rays_;
+  std::vector<GrHit> hits_, shadow_hits_, batch_hits_;
+  std::vector<PathRay> paths_, next_paths_;
+  std::vector<ShadowRay> shadows_;
+  std::vector<glm::vec3> radiance_;  // per pixel accumulator
+  std::vector<glm::vec3> ray_radiance_;  // per ray of the current generation
+};
+
+}  // namespace gridrt

@@ -1,0 +1,135 @@
+#include "uniform_grid.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "triangle_box_overlap.h"
+
+namespace gridrt {
+
+namespace {
+
+struct VoxelRef {
+  int voxel;
+  int triangle;
+};
+
+// Vertices of the triangle exactly as Moeller-Trumbore sees it (v0, v0+e1, v0+e2),
+// summed in double where float + float is exact.
+void exactVertices(const GrTriangle& t, glm::dvec3 v[3]) {
+  v[0] = glm::dvec3(t.v0x, t.v0y, t.v0z);
+  v[1] = v[0] + glm::dvec3(t.e1x, t.e1y, t.e1z);
+  v[2] = v[0] + glm::dvec3(t.e2x, t.e2y, t.e2z);
+}
+
+// The range of voxel indices on one axis whose margin-grown cell may touch [lo, hi].
+// One extra cell each side; the exact test decides.
+void axisRange(double lo, double hi, double gmin, double cell, int n, int& first, int& last) {
+  first = std::clamp(int(std::floor((lo - gmin) / cell)) - 1, 0, n - 1);
+  last = std::clamp(int(std::floor((hi - gmin) / cell)) + 1, 0, n - 1);
+}
+
+}  // namespace
+
+size_t UniformGrid::memoryBytes() const {
+  return pe_of_voxel.size() * sizeof(int) + voxel_of_pe.size() * sizeof(int) +
+         pe_tri_begin.size() * sizeof(int) + pe_triangles.size() * sizeof(GrTriangle);
+}
+
+glm::ivec3 UniformGrid::voxelCoords(int linear) const {
+  return {linear % info.nx, (linear / info.nx) % info.ny, linear / (info.nx * info.ny)};
+}
+
+glm::ivec3 autoGridResolution(const Bounds& bounds, size_t triangle_count, float density) {
+  glm::dvec3 d = bounds.empty() ? glm::dvec3(1.0) : glm::dvec3(bounds.extent());
+  double largest = std::max({d.x, d.y, d.z});
+  if (!(largest > 0.0)) return {1, 1, 1};
+  d = glm::max(d, glm::dvec3(largest * 1e-3));
+  double k = std::cbrt(double(density) * double(triangle_count) / (d.x * d.y * d.z));
+  glm::ivec3 r;
+  for (int a = 0; a < 3; ++a)
+    r[a] = std::clamp(int(std::lround(d[a] * k)), 1, kMaxGridResolution);
+  while ((long long)r.x * r.y * r.z > kMaxGridVoxels) r = glm::max(r / 2, glm::ivec3(1));
+  return r;
+}
+
+UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
+                             const GridSettings& settings) {
+  UniformGrid grid;
+  grid.triangle_count = triangles.size();
+  glm::ivec3 n = settings.automatic
+                     ? autoGridResolution(bounds, triangles.size(), settings.density)
+                     : glm::clamp(settings.dims, glm::ivec3(1), glm::ivec3(kMaxGridResolution));
+  Bounds box = bounds;
+  if (box.empty()) box.lo = box.hi = glm::vec3(0.0f);
+  glm::dvec3 lo(box.lo), hi(box.hi);
+  double scale = std::max({std::fabs(lo.x), std::fabs(lo.y), std::fabs(lo.z), std::fabs(hi.x),
+                           std::fabs(hi.y), std::fabs(hi.z)}) +
+                 glm::length(hi - lo);
+  // A positive floor keeps the cells non-zero even for a scene collapsed to one point.
+  grid.margin = std::max(settings.margin_rel * scale, 1e-30);
+  glm::dvec3 gmin = lo - grid.margin;
+  glm::dvec3 cell = (hi - lo + 2.0 * grid.margin) / glm::dvec3(n);
+  grid.info.minx = float(gmin.x);
+  grid.info.miny = float(gmin.y);
+  grid.info.minz = float(gmin.z);
+  grid.info.cellx = float(cell.x);
+  grid.info.celly = float(cell.y);
+  grid.info.cellz = float(cell.z);
+  grid.info.nx = n.x;
+  grid.info.ny = n.y;
+  grid.info.nz = n.z;
+  // From here on the float values are the grid's definition (the DDA uses them).
+  gmin = glm::dvec3(grid.info.minx, grid.info.miny, grid.info.minz);
+  cell = glm::dvec3(grid.info.cellx, grid.info.celly, grid.info.cellz);
+  const double m = grid.margin;
+  const size_t voxels = size_t(n.x) * n.y * n.z;
+
+  int threads = omp_get_max_threads();
+  std::vector<std::vector<VoxelRef>> refs(threads);
+#pragma omp parallel num_threads(threads)
+  {
+    auto& mine = refs[omp_get_thread_num()];
+#pragma omp for schedule(static)
+    for (long long t = 0; t < (long long)triangles.size(); ++t) {
+      glm::dvec3 v[3];
+      exactVertices(triangles[t], v);
+      glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2]));
+      glm::dvec3 thi = glm::max(v[0], glm::max(v[1], v[2]));
+      int first[3], last[3];
+      for (int a = 0; a < 3; ++a) axisRange(tlo[a], thi[a], gmin[a], cell[a], n[a], first[a], last[a]);
+      for (int z = first[2]; z <= last[2]; ++z)
+        for (int y = first[1]; y <= last[1]; ++y)
+          for (int x = first[0]; x <= last[0]; ++x) {
+            glm::dvec3 cell_lo = gmin + glm::dvec3(x, y, z) * cell - m;
+            glm::dvec3 cell_hi = gmin + glm::dvec3(x + 1, y + 1, z + 1) * cell + m;
+            if (triangleOverlapsBox(cell_lo, cell_hi, v[0], v[1], v[2]))
+              mine.push_back({x + n.x * (y + n.y * z), int(t)});
+          }
+    }
+  }
+  // Counting sort by voxel. Threads hold consecutive triangle ranges in order, so
+  // walking thread 0, 1, ... keeps each voxel's triangles in increasing global index.
+  std::vector<int> count(voxels, 0);
+  for (const auto& list : refs)
+    for (const auto& r : list) ++count[r.voxel];
+  grid.pe_of_voxel.assign(voxels, -1);
+  grid.pe_tri_begin.push_back(0);
+  std::vector<int> cursor(voxels, 0);
+  for (size_t v = 0; v < voxels; ++v) {
+    if (count[v] == 0) continue;
+    grid.pe_of_voxel[v] = int(grid.voxel_of_pe.size());
+    grid.voxel_of_pe.push_back(int(v));
+    cursor[v] = grid.pe_tri_begin.back();
+    grid.pe_tri_begin.push_back(grid.pe_tri_begin.back() + count[v]);
+  }
+  grid.pe_triangles.resize(grid.pe_tri_begin.back());
+  for (const auto& list : refs)
+    for (const auto& r : list) grid.pe_triangles[cursor[r.voxel]++] = triangles[r.triangle];
+  grid.info.pe_count = grid.peCount();
+  return grid;
+}
+
+}  // namespace gridrt

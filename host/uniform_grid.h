@@ -1,0 +1,61 @@
+// The uniform grid of GridRT: the scene's box split into NX x NY x NZ equal voxels, each
+// listing the triangles that really overlap it (separating-axis test, not bounding
+// boxes). Every non-empty voxel is a processing element (PE), numbered in voxel order.
+#pragma once
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "bounds.h"
+#include "gridrt_types.h"
+
+namespace gridrt {
+
+// Default lambda of the auto resolution R_i = d_i * cbrt(lambda * N / V): about lambda
+// triangles per voxel volume, the density Cleary & Wyvill and pbrt-v1 recommend (3..5);
+// tune with --grid-density.
+constexpr float kDefaultGridDensity = 4.0f;
+
+// The grid box is the scene box grown by a margin, and every voxel is tested for overlap
+// grown by the same margin, so a triangle within `margin` of a voxel is listed in it.
+// That makes the grid conservative against float rounding of hit points (MT's t and the
+// DDA's boundary t differ from exact values by a few ulps of the coordinates): a hit
+// computed just past a voxel boundary is still found by the voxel it is assigned to.
+// Relative to the largest coordinate magnitude plus the diagonal: ~170 float ulps.
+constexpr double kGridMarginRel = 1e-5;
+
+// Upper bounds that keep the grid's memory sane whatever the density asks for.
+constexpr int kMaxGridResolution = 512;
+constexpr long long kMaxGridVoxels = 1 << 24;
+
+struct GridSettings {
+  bool automatic = true;          // derive the resolution from N and the box's shape
+  float density = kDefaultGridDensity;
+  glm::ivec3 dims{1, 1, 1};       // used when !automatic
+  double margin_rel = kGridMarginRel;  // tests set 0 to show what the margin prevents
+};
+
+struct UniformGrid {
+  GrGridInfo info{};
+  double margin = 0.0;
+  std::vector<int> pe_of_voxel;   // per voxel (x fastest), -1 if empty
+  std::vector<int> voxel_of_pe;   // per PE, its linear voxel index
+  std::vector<int> pe_tri_begin;  // per PE + 1: CSR offsets into pe_triangles
+  std::vector<GrTriangle> pe_triangles;  // per PE, its triangles in increasing global index
+  size_t triangle_count = 0;
+
+  int peCount() const { return int(voxel_of_pe.size()); }
+  size_t voxelCount() const { return pe_of_voxel.size(); }
+  int triangleCountOfPe(int pe) const { return pe_tri_begin[pe + 1] - pe_tri_begin[pe]; }
+  size_t memoryBytes() const;
+  glm::ivec3 voxelCoords(int linear) const;
+};
+
+// R_i = d_i * cbrt(density * N / V), each at least 1, capped by the limits above.
+// Flat or empty extents are floored at 1e-3 of the largest so V is never 0.
+glm::ivec3 autoGridResolution(const Bounds& bounds, size_t triangle_count, float density);
+
+// Builds the grid over `triangles` (global order). Runs on all cores.
+UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
+                             const GridSettings& settings);
+
+}  // namespace gridrt

@@ -1,0 +1,52 @@
+/* Brute force: every ray against every triangle. The reference the grid intersectors
+ * must match. One work-item tests 16 rays (float16 lanes, PoCL vectorises explicit
+ * vector types but not loops across work-items: NOTES-POCL.md). */
+#pragma OPENCL FP_CONTRACT OFF
+#include "gridrt_types.h"
+#include "moller_trumbore16.h"
+
+#define LANES 16
+
+__kernel void brute_intersect(__global const GrRay* rays, int ray_count,
+                              __global const GrTriangle* tris, int tri_count, int any_hit,
+                              __global GrHit* hits) {
+  int first = get_global_id(0) * LANES;
+  if (first >= ray_count) return;
+  float a_ox[LANES], a_oy[LANES], a_oz[LANES], a_dx[LANES], a_dy[LANES], a_dz[LANES];
+  float a_tmin[LANES], a_tmax[LANES];
+  for (int k = 0; k < LANES; ++k) {
+    int r = min(first + k, ray_count - 1); /* pad with the last ray */
+    GrRay ray = rays[r];
+    a_ox[k] = ray.ox; a_oy[k] = ray.oy; a_oz[k] = ray.oz;
+    a_dx[k] = ray.dx; a_dy[k] = ray.dy; a_dz[k] = ray.dz;
+    a_tmin[k] = ray.tmin; a_tmax[k] = ray.tmax;
+  }
+  GrRays16 r16;
+  r16.ox = vload16(0, a_ox); r16.oy = vload16(0, a_oy); r16.oz = vload16(0, a_oz);
+  r16.dx = vload16(0, a_dx); r16.dy = vload16(0, a_dy); r16.dz = vload16(0, a_dz);
+  float16 tmin = vload16(0, a_tmin);
+  float16 best_t = vload16(0, a_tmax);
+  float16 best_u = 0.0f, best_v = 0.0f;
+  int16 best_prim = -1;
+  for (int i = 0; i < tri_count; ++i) {
+    GrTriangle tri = tris[i];
+    float16 t, u, v;
+    int16 hit = gr_intersect_mt16(&r16, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z,
+                                  tri.e2x, tri.e2y, tri.e2z, &t, &u, &v);
+    hit &= (t > tmin) & (t < best_t);
+    best_t = select(best_t, t, hit);
+    best_u = select(best_u, u, hit);
+    best_v = select(best_v, v, hit);
+    best_prim = select(best_prim, (int16)tri.prim, hit);
+    if (any_hit && all(best_prim >= 0)) break;
+  }
+  float o_t[LANES], o_u[LANES], o_v[LANES];
+  int o_p[LANES];
+  vstore16(best_t, 0, o_t); vstore16(best_u, 0, o_u); vstore16(best_v, 0, o_v);
+  vstore16(best_prim, 0, o_p);
+  for (int k = 0; k < LANES && first + k < ray_count; ++k) {
+    GrHit h;
+    h.t = o_t[k]; h.prim = o_p[k]; h.u = o_u[k]; h.v = o_v[k];
+    hits[first + k] = h;
+  }
+}

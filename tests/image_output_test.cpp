@@ -1,0 +1,194 @@
+// Image writing and reading: sRGB encoding of 8-bit output, exact float EXR and AOVs,
+// one-line errors naming the file, and atomic writes (no half-written or temporary files).
+#include "image_output.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "errors.h"
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+using gridrt::Film;
+using gridrt::ImageData;
+using gridrt::RenderError;
+
+namespace {
+
+// An empty directory of its own for each test, so listings see only that test's files.
+std::string freshDir(const std::string& name) {
+  std::string dir = gridrt::test::tempPath("image_output_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::vector<std::string> listDir(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// Runs `write`, expects a RenderError and returns its message.
+template <class F>
+std::string renderErrorOf(F write) {
+  try {
+    write();
+  } catch (const RenderError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected a RenderError";
+  return "";
+}
+
+}  // namespace
+
+TEST(ImageOutput, PngRoundTripAppliesSrgbEncodingAndClamps) {
+  const std::string path = freshDir("png") + "/out.png";
+  // Pixels: (0.5, 0, 1) and (2, -1, NaN): out-of-range values clamp, NaN becomes black.
+  Film film{2, 1, {0.5f, 0.0f, 1.0f, 2.0f, -1.0f, std::nanf("")}};
+  gridrt::writeImage(path, film);
+
+  ImageData img = gridrt::readImage(path);
+  ASSERT_EQ(img.width, 2);
+  ASSERT_EQ(img.height, 1);
+  ASSERT_EQ(img.channels, 3);
+  const std::vector<float> expected{0.7354f, 0.0f, 1.0f, 1.0f, 0.0f, 0.0f};
+  for (size_t i = 0; i < expected.size(); ++i)
+    EXPECT_NEAR(img.pixels[i], expected[i], 1.0f / 255.0f) << "value " << i;
+}
+
+TEST(ImageOutput, JpegIsSrgbEncodedToo) {
+  const std::string path = freshDir("jpg") + "/out.jpg";
+  Film film{8, 8, std::vector<float>(3 * 8 * 8, 0.5f)};
+  gridrt::writeImage(path, film);
+
+  ImageData img = gridrt::readImage(path);
+  ASSERT_EQ(img.pixels.size(), film.rgb.size());
+  for (float v : img.pixels) EXPECT_NEAR(v, 0.7354f, 3.0f / 255.0f);  // lossy, uniform block
+}
+
+TEST(ImageOutput, ExrKeepsLinearFloatsExactly) {
+  const std::string path = freshDir("exr") + "/out.exr";
+  Film film{2, 2, {0.1f, 0.5f, 1.0f, 2.75f, 1e-4f, 123.456f, -0.5f, 0.0f, 1e6f,
+                   0.333333f, 7.0f, 0.7354f}};
+  gridrt::writeImage(path, film);
+
+  ImageData img = gridrt::readImage(path);
+  EXPECT_EQ(img.width, 2);
+  EXPECT_EQ(img.height, 2);
+  EXPECT_EQ(img.channels, 3);
+  EXPECT_EQ(img.pixels, film.rgb);  // row 0 stays on top, values bit-exact
+}
+
+TEST(ImageOutput, SingleChannelAovRoundTripIsExact) {
+  const std::string path = freshDir("aov1") + "/primid.exr";
+  // Primitive ids with -1 for misses, and the largest exactly representable integer 2^24.
+  const std::vector<float> data{-1.0f, 0.0f, 948.0f, 16777216.0f, 0.25f, 3.5e10f};
+  gridrt::writeAov(path, 3, 2, 1, data);
+
+  ImageData img = gridrt::readImage(path);
+  EXPECT_EQ(img.width, 3);
+  EXPECT_EQ(img.height, 2);
+  EXPECT_EQ(img.channels, 1);
+  EXPECT_EQ(img.pixels, data);
+}
+
+TEST(ImageOutput, ThreeChannelAovRoundTripIsExact) {
+  const std::string path = freshDir("aov3") + "/normal.exr";
+  const std::vector<float> data{0.0f, 0.0f, 1.0f, -0.577350f, 0.577350f, -0.577350f};
+  gridrt::writeAov(path, 2, 1, 3, data);
+
+  ImageData img = gridrt::readImage(path);
+  EXPECT_EQ(img.channels, 3);
+  EXPECT_EQ(img.pixels, data);
+}
+
+TEST(ImageOutput, UnsupportedExtensionIsRejectedNamingTheFile) {
+  const std::string dir = freshDir("ext");
+  const std::string path = dir + "/out.xyz";
+  Film film{1, 1, {0.5f, 0.5f, 0.5f}};
+
+  std::string message = renderErrorOf([&] { gridrt::writeImage(path, film); });
+  EXPECT_NE(message.find("'" + path + "'"), std::string::npos) << message;
+  EXPECT_NE(message.find("unsupported output format '.xyz' (use .png, .jpg or .exr)"),
+            std::string::npos)
+      << message;
+  EXPECT_THROW(gridrt::validateOutputPath(path), RenderError);
+  EXPECT_THROW(gridrt::validateOutputPath(dir + "/no_extension"), RenderError);
+  // AOVs must keep floats exactly: 8-bit formats are refused.
+  EXPECT_THROW(gridrt::writeAov(dir + "/depth.png", 1, 1, 1, {1.0f}), RenderError);
+  EXPECT_TRUE(listDir(dir).empty());
+}
+
+TEST(ImageOutput, ValidateOutputPathAcceptsSupportedFormats) {
+  const std::string dir = freshDir("valid");
+  for (const char* name : {"a.png", "a.PNG", "a.jpg", "a.jpeg", "a.exr", "a.hdr", "a.tif"})
+    EXPECT_NO_THROW(gridrt::validateOutputPath(dir + "/" + name)) << name;
+  EXPECT_NO_THROW(gridrt::validateOutputPath(dir + "/depth.exr", gridrt::OutputKind::Aov));
+  EXPECT_TRUE(listDir(dir).empty());  // validation writes nothing
+}
+
+TEST(ImageOutput, MissingDirectoryIsRejectedBeforeWriting) {
+  const std::string path = freshDir("missing") + "/no/such/dir/out.png";
+  Film film{1, 1, {0.5f, 0.5f, 0.5f}};
+
+  std::string message = renderErrorOf([&] { gridrt::writeImage(path, film); });
+  EXPECT_EQ(message.rfind("cannot write '" + path + "': ", 0), 0u) << message;
+  EXPECT_NE(message.find("does not exist"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  EXPECT_THROW(gridrt::validateOutputPath(path), RenderError);
+  EXPECT_THROW(gridrt::writeAov(path + ".exr", 1, 1, 1, {1.0f}), RenderError);
+}
+
+TEST(ImageOutput, FailedWriteLeavesPreviousFileUntouched) {
+  const std::string dir = freshDir("untouched");
+  const std::string path = dir + "/out.png";
+  gridrt::writeImage(path, Film{2, 2, std::vector<float>(12, 0.25f)});
+  const std::string before = fileBytes(path);
+  ASSERT_FALSE(before.empty());
+
+  Film inconsistent{2, 2, std::vector<float>(11, 1.0f)};  // one value short
+  std::string message = renderErrorOf([&] { gridrt::writeImage(path, inconsistent); });
+  EXPECT_NE(message.find("'" + path + "'"), std::string::npos) << message;
+  EXPECT_THROW(gridrt::writeImage(path, Film{0, 2, {}}), RenderError);
+  EXPECT_THROW(gridrt::writeAov(path + ".exr", 2, 2, 1, {1.0f}), RenderError);
+
+  EXPECT_EQ(fileBytes(path), before);
+  EXPECT_EQ(listDir(dir), std::vector<std::string>{"out.png"});
+}
+
+TEST(ImageOutput, NoTemporaryFilesLeftAfterSuccessOrFailure) {
+  const std::string dir = freshDir("temps");
+  Film film{4, 3, std::vector<float>(36, 0.5f)};
+  gridrt::writeImage(dir + "/a.png", film);
+  gridrt::writeImage(dir + "/a.png", film);  // overwriting an existing file
+  gridrt::writeImage(dir + "/b.exr", film);
+  gridrt::writeAov(dir + "/c.exr", 4, 3, 1, std::vector<float>(12, 948.0f));
+  fs::create_directory(dir + "/d.png");  // a directory where the image should go
+  EXPECT_THROW(gridrt::writeImage(dir + "/d.png", film), RenderError);
+  EXPECT_THROW(gridrt::writeImage(dir + "/e.xyz", film), RenderError);
+  EXPECT_THROW(gridrt::writeImage(dir + "/f.png", Film{4, 3, {}}), RenderError);
+
+  EXPECT_EQ(listDir(dir), (std::vector<std::string>{"a.png", "b.exr", "c.exr", "d.png"}));
+}
+
+TEST(ImageOutput, ReadingAMissingFileThrowsNamingIt) {
+  const std::string path = freshDir("read") + "/absent.exr";
+  std::string message = renderErrorOf([&] { gridrt::readImage(path); });
+  EXPECT_EQ(message.rfind("cannot read '" + path + "': ", 0), 0u) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
