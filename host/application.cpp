@@ -18,6 +18,7 @@
 #include "gridrt_intersector.h"
 #include "image_output.h"
 #include "prepared_triangles.h"
+#include "reference_intersector.h"
 #include "renderer.h"
 #include "stopwatch.h"
 #include "uniform_grid.h"
@@ -65,9 +66,6 @@ std::vector<float> aovData(const PrimaryAovs& a, const std::string& name, int& c
   return a.list_length;
 }
 
-std::string accelName(AccelKind k) {
-  return k == AccelKind::Brute ? "brute" : k == AccelKind::Dda ? "dda" : "gridrt";
-}
 
 }  // namespace
 
@@ -100,7 +98,8 @@ int runApplication(const Options& o) {
   std::vector<GrTriangle> triangles = prepareTriangles(scene);
   clock.restart();
   UniformGrid grid;
-  if (o.accel != AccelKind::Brute) grid = buildUniformGrid(triangles, sceneBounds(scene), o.grid);
+  bool uses_grid = o.accel == AccelKind::GridRt || o.accel == AccelKind::Dda;
+  if (uses_grid) grid = buildUniformGrid(triangles, sceneBounds(scene), o.grid);
   double build_ms = clock.ms();
 
   clock.restart();
@@ -108,6 +107,8 @@ int runApplication(const Options& o) {
   GridRtIntersector* gridrt = nullptr;
   if (o.accel == AccelKind::Brute) {
     intersector = std::make_unique<BruteIntersector>(runtime, triangles);
+  } else if (o.accel == AccelKind::Reference) {
+    intersector = std::make_unique<ReferenceIntersector>(scene);
   } else if (o.accel == AccelKind::Dda) {
     intersector = std::make_unique<DdaIntersector>(runtime, grid);
   } else {
@@ -184,7 +185,7 @@ int runApplication(const Options& o) {
   stats["mrays_per_s"] = median_frame > 0 ? total_rays / (median_frame * 1e3) : 0.0;
   const IntersectCounters& c = first_frame_counters;
   stats["tests_per_ray"] = c.rays ? double(c.tests) / double(c.rays) : 0.0;
-  if (o.accel != AccelKind::Brute) {
+  if (uses_grid) {
     std::vector<int> refs(grid.peCount());
     for (int pe = 0; pe < grid.peCount(); ++pe) refs[pe] = grid.triangleCountOfPe(pe);
     MeanMax r = meanMax(refs);
@@ -218,7 +219,7 @@ int runApplication(const Options& o) {
                   (unsigned long long)frame.rays.primary, (unsigned long long)frame.rays.shadow,
                   (unsigned long long)(frame.rays.reflection + frame.rays.refraction),
                   median_frame, median_frame > 0 ? total_rays / (median_frame * 1e3) : 0.0,
-                  accelName(o.accel).c_str(), o.output.c_str());
+                  intersector->name().c_str(), o.output.c_str());
     std::cerr << line;
   }
   return 0;

@@ -93,8 +93,9 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
       ->capture_default_str()->check(CLI::Range(0, 64));
   app.add_option("--device", o.device, "OpenCL device: P:D or part of its name (default: first)");
   app.add_flag("--list-devices", o.list_devices, "list OpenCL devices and exit");
-  app.add_option("--accel", raw.accel, "intersector: gridrt, dda or brute")
-      ->capture_default_str()->check(CLI::IsMember({"gridrt", "dda", "brute"}));
+  app.add_option("--accel", raw.accel,
+                 "intersector: gridrt, dda, brute (device) or reference (host, double)")
+      ->capture_default_str()->check(CLI::IsMember({"gridrt", "dda", "brute", "reference"}));
   app.add_option("--grid", raw.grid, "grid resolution: auto or NX,NY,NZ")->capture_default_str();
   app.add_option("--grid-density", o.grid.density,
                  "lambda of the auto resolution R_i = d_i*cbrt(lambda*N/V)")
@@ -124,8 +125,10 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
 }
 
 void finish(Options& o, const RawOptions& raw) {
-  o.accel = raw.accel == "dda" ? AccelKind::Dda
-            : raw.accel == "brute" ? AccelKind::Brute : AccelKind::GridRt;
+  o.accel = raw.accel == "dda"         ? AccelKind::Dda
+            : raw.accel == "brute"     ? AccelKind::Brute
+            : raw.accel == "reference" ? AccelKind::Reference
+                                       : AccelKind::GridRt;
   parseGrid(raw.grid, o.grid);
   parseRayOffset(raw.ray_offset, o.ray_offset);
   if (!raw.background.empty()) o.background = parseVec3("--background", raw.background);

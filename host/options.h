@@ -12,7 +12,7 @@
 
 namespace gridrt {
 
-enum class AccelKind { GridRt, Dda, Brute };
+enum class AccelKind { GridRt, Dda, Brute, Reference };
 
 struct Options {
   std::string scene;                  // glTF/glb path; empty = the built-in default scene

@@ -1,0 +1,989 @@
+// glTF 2.0 loader: tinygltf parses, this file validates every index and byte range it uses
+// (tinygltf checks almost none) and flattens the node tree into world-space triangles.
+// Behaviour and guarantees are listed in gltf_loader.h.
+#include "gltf_loader.h"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <optional>
+#include <string_view>
+#include <system_error>
+
+#include "errors.h"
+
+namespace gridrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Decoded size above which a data URI is refused before tinygltf decodes it.
+constexpr size_t kMaxDataUriBytes = size_t{256} << 20;
+// JSON nesting deeper than this is refused: the JSON library frees (and tinygltf converts
+// extras/extensions) recursively, so absurd nesting would overflow the stack.
+constexpr int kMaxJsonDepth = 256;
+// tinygltf takes lengths as unsigned int.
+constexpr size_t kMaxInputBytes = std::numeric_limits<uint32_t>::max();
+constexpr double kPi = 3.14159265358979323846;
+
+// ---------------------------------------------------------------------------------------------
+// Messages
+
+// tinygltf reports several problems separated by newlines, and file content (names, the
+// JSON parser's "last read" excerpt) may hold control characters; messages are one line.
+std::string oneLine(const std::string& text) {
+  std::string out;
+  bool pending_break = false;
+  for (char c : text) {
+    if (c == '\n' || c == '\r') {
+      pending_break = true;
+      continue;
+    }
+    if (pending_break && !out.empty()) out += "; ";
+    pending_break = false;
+    out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
+  }
+  while (!out.empty() && (out.back() == ' ' || out.back() == ';')) out.pop_back();
+  return out;
+}
+
+[[noreturn]] void fail(const std::string& label, const std::string& what) {
+  throw SceneError(oneLine(label + ": " + what));
+}
+
+std::string named(const std::string& kind, size_t index, const std::string& name) {
+  std::string s = kind + " " + std::to_string(index);
+  if (!name.empty()) s += " '" + name + "'";
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sandboxed file access for external URIs (buffers, images)
+//
+// tinygltf reads external files while it parses, so the check has to sit in its filesystem
+// callbacks. It looks a URI up as JoinPath(base_dir, uri) and then as "./" + uri, and hands
+// the callbacks only the joined path; the guard recovers the URI by stripping base_dir
+// (always absolute here, so the "./" attempt never matches and is refused silently).
+
+struct FileGuard {
+  std::string base_dir;  // absolute, exactly as given to tinygltf; empty: no external files
+  std::string rejection;  // the first refused URI and why, reported instead of tinygltf's error
+};
+
+bool hasParentComponent(const std::string& uri) {
+  size_t start = 0;
+  while (start <= uri.size()) {
+    size_t end = uri.find_first_of("/\\", start);
+    if (end == std::string::npos) end = uri.size();
+    if (uri.compare(start, end - start, "..") == 0 && end - start == 2) return true;
+    start = end + 1;
+  }
+  return false;
+}
+
+bool looksAbsolute(const std::string& uri) {
+  if (uri.empty()) return false;
+  if (uri[0] == '/' || uri[0] == '\\') return true;
+  return uri.size() >= 2 && uri[1] == ':';  // a Windows drive letter
+}
+
+bool isInside(const fs::path& inner, const fs::path& outer) {
+  return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first ==
+         outer.end();
+}
+
+// The URI part of a joined path, or nullopt if the path is not under base_dir.
+std::optional<std::string> uriOf(const FileGuard& guard, const std::string& joined) {
+  const std::string& base = guard.base_dir;
+  if (base.empty()) return joined;
+  if (joined.compare(0, base.size(), base) != 0) return std::nullopt;
+  std::string uri = joined.substr(base.size());
+  if (base.back() != '/' && !uri.empty() && uri[0] == '/') uri.erase(0, 1);
+  return uri;
+}
+
+// Returns the file to read, or nullopt (recording why) if the path may not be read.
+std::optional<fs::path> approvedPath(FileGuard& guard, const std::string& joined) {
+  std::optional<std::string> uri = uriOf(guard, joined);
+  if (!uri) return std::nullopt;
+  auto refuse = [&](const std::string& why) -> std::optional<fs::path> {
+    if (guard.rejection.empty()) guard.rejection = "external URI '" + *uri + "' " + why;
+    return std::nullopt;
+  };
+  if (guard.base_dir.empty()) return refuse("cannot be read: no scene folder was given");
+  if (uri->empty()) return refuse("is empty");
+  if (looksAbsolute(*uri)) return refuse("is an absolute path (must be inside the scene folder)");
+  if (hasParentComponent(*uri)) return refuse("contains '..' (must stay inside the scene folder)");
+  std::error_code base_ec, target_ec;
+  fs::path base = fs::weakly_canonical(guard.base_dir, base_ec);
+  fs::path target = fs::weakly_canonical(fs::path(guard.base_dir) / *uri, target_ec);
+  if (base_ec || target_ec)
+    return refuse("cannot be resolved: " + (base_ec ? base_ec : target_ec).message());
+  // Symbolic links may still lead out of the folder.
+  if (!isInside(target, base)) return refuse("leads outside the scene folder");
+  return target;
+}
+
+bool guardedFileExists(const std::string& path, void* user) {
+  auto target = approvedPath(*static_cast<FileGuard*>(user), path);
+  std::error_code ec;
+  return target && fs::is_regular_file(*target, ec);
+}
+
+// The default expands "~" and environment variables (wordexp); URIs must not do that.
+std::string identityPath(const std::string& path, void*) { return path; }
+
+bool guardedReadFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                     void* user) {
+  auto target = approvedPath(*static_cast<FileGuard*>(user), path);
+  if (!target) {
+    if (err) *err += "refused to read " + path;
+    return false;
+  }
+  std::ifstream in(*target, std::ios::binary);
+  if (!in) {
+    if (err) *err += std::string("cannot open ") + path + ": " + std::strerror(errno);
+    return false;
+  }
+  out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return true;
+}
+
+bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&,
+                 void*) {
+  if (err) *err += "the loader never writes files";
+  return false;
+}
+
+// Textures are not used by the renderer; stb is not available to decode them anyway.
+bool ignoreImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                 const unsigned char*, int, void*) {
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Checks on the JSON text before tinygltf sees it
+
+// The JSON text of a .glb (its first chunk), or the whole input for .gltf.
+std::string_view jsonText(const unsigned char* data, size_t size, bool binary) {
+  if (!binary) return {reinterpret_cast<const char*>(data), size};
+  if (size < 20) return {};
+  uint32_t chunk_length = 0;
+  std::memcpy(&chunk_length, data + 12, 4);  // glTF is little-endian, like our hosts
+  return {reinterpret_cast<const char*>(data) + 20, std::min<size_t>(chunk_length, size - 20)};
+}
+
+// Refuses data URIs whose decoded size would exceed kMaxDataUriBytes. A base64 string stops
+// at its closing quote: tinygltf's decoder stops at the first non-base64 character anyway.
+// A URI spelled with JSON escapes ("\u0064ata:") evades this scan, but then decodes to at
+// most 3/4 of the input, which is already in memory.
+void checkDataUris(std::string_view json, const std::string& label) {
+  const std::string_view marker = "\"data:";
+  for (size_t at = json.find(marker); at != std::string_view::npos;
+       at = json.find(marker, at + 1)) {
+    size_t end = json.find('"', at + 1);
+    if (end == std::string_view::npos) end = json.size();
+    size_t decoded = (end - at) / 4 * 3;
+    if (decoded > kMaxDataUriBytes)
+      fail(label, "data URI of about " + std::to_string(decoded >> 20) +
+                      " MiB exceeds the limit of " + std::to_string(kMaxDataUriBytes >> 20) +
+                      " MiB");
+  }
+}
+
+void checkJsonDepth(std::string_view json, const std::string& label) {
+  int depth = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < json.size(); ++i) {
+    char c = json[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth)
+        fail(label, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Parsing
+
+bool startsWithMagic(const unsigned char* data, size_t size) {
+  return size >= 4 && std::memcmp(data, "glTF", 4) == 0;
+}
+
+tinygltf::Model parseModel(const unsigned char* data, size_t size, const std::string& base_dir,
+                           const std::string& label, std::vector<std::string>& warnings) {
+  if (size > kMaxInputBytes) fail(label, "larger than 4 GiB");
+  const bool binary = startsWithMagic(data, size);
+  if (binary && size >= 12) {
+    uint32_t declared = 0;
+    std::memcpy(&declared, data + 8, 4);
+    if (declared > size)
+      fail(label, "malformed glTF: truncated GLB (header declares " + std::to_string(declared) +
+                      " bytes, got " + std::to_string(size) + ")");
+  }
+  std::string_view json = jsonText(data, size, binary);
+  checkJsonDepth(json, label);
+  checkDataUris(json, label);
+
+  FileGuard guard;
+  if (!base_dir.empty()) {
+    std::error_code ec;
+    fs::path absolute = fs::absolute(base_dir, ec);
+    if (ec) fail(label, "cannot resolve scene folder '" + base_dir + "': " + ec.message());
+    guard.base_dir = absolute.lexically_normal().string();
+  }
+
+  tinygltf::TinyGLTF parser;
+  parser.SetImageLoader(ignoreImage, nullptr);
+  parser.SetFsCallbacks(
+      {guardedFileExists, identityPath, guardedReadFile, refuseWrite, &guard});
+
+  tinygltf::Model model;
+  std::string err, warn;
+  bool ok = false;
+  try {
+    const auto length = static_cast<unsigned int>(size);
+    ok = binary ? parser.LoadBinaryFromMemory(&model, &err, &warn, data, length, guard.base_dir)
+                : parser.LoadASCIIFromString(&model, &err, &warn,
+                                             reinterpret_cast<const char*>(data), length,
+                                             guard.base_dir);
+  } catch (const std::exception& e) {
+    fail(label, std::string("malformed glTF: ") + e.what());
+  }
+  // A refused URI explains tinygltf's "File not found" better than tinygltf can.
+  if (!guard.rejection.empty()) fail(label, guard.rejection);
+  if (!ok) fail(label, "malformed glTF: " + (err.empty() ? "unknown error" : oneLine(err)));
+  // tinygltf sometimes reports a problem and carries on (e.g. a misaligned GLB chunk).
+  if (!err.empty()) warnings.push_back("glTF: " + oneLine(err));
+  if (!warn.empty()) warnings.push_back("glTF: " + oneLine(warn));
+  return model;
+}
+
+// Extensions that change geometry cannot be ignored; material and texture ones can.
+void checkRequiredExtensions(const tinygltf::Model& model, const std::string& label) {
+  for (const std::string& ext : model.extensionsRequired) {
+    bool supported = ext == "KHR_lights_punctual" || ext.rfind("KHR_materials_", 0) == 0 ||
+                     ext.rfind("KHR_texture_", 0) == 0 || ext.rfind("EXT_texture_", 0) == 0;
+    if (!supported) fail(label, "requires extension " + ext + ", which is not supported");
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Accessors
+
+size_t componentSize(int component_type) {
+  switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;  // INT and DOUBLE are not glTF 2.0 accessor types
+  }
+}
+
+const char* componentName(int component_type) {
+  switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
+    default: return "an invalid component type";
+  }
+}
+
+const char* typeName(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    case TINYGLTF_TYPE_MAT2: return "MAT2";
+    case TINYGLTF_TYPE_MAT3: return "MAT3";
+    case TINYGLTF_TYPE_MAT4: return "MAT4";
+    default: return "?";
+  }
+}
+
+// A validated accessor: element i starts at data + i * stride, and all count elements lie
+// inside their buffer view, which lies inside its buffer.
+struct AccessorView {
+  const unsigned char* data = nullptr;
+  size_t stride = 0;
+  size_t count = 0;
+  int component_type = 0;
+  int type = 0;
+
+  glm::dvec3 vec3(size_t i) const {
+    float v[3];
+    std::memcpy(v, data + i * stride, sizeof v);
+    return {v[0], v[1], v[2]};
+  }
+
+  uint32_t index(size_t i) const {
+    const unsigned char* p = data + i * stride;
+    switch (component_type) {
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        uint16_t v;
+        std::memcpy(&v, p, 2);
+        return v;
+      }
+      default: {
+        uint32_t v;
+        std::memcpy(&v, p, 4);
+        return v;
+      }
+    }
+  }
+};
+
+// offset + stride * (count - 1) + element, or nullopt on overflow.
+std::optional<size_t> accessorEnd(size_t offset, size_t stride, size_t count, size_t element) {
+  if (count == 0) return offset;
+  size_t span, end;
+  if (__builtin_mul_overflow(stride, count - 1, &span)) return std::nullopt;
+  if (__builtin_add_overflow(offset, span, &end)) return std::nullopt;
+  if (__builtin_add_overflow(end, element, &end)) return std::nullopt;
+  return end;
+}
+
+AccessorView viewAccessor(const tinygltf::Model& model, int index, const std::string& label) {
+  if (index < 0 || size_t(index) >= model.accessors.size())
+    fail(label, "accessor " + std::to_string(index) + " does not exist (" +
+                    std::to_string(model.accessors.size()) + " accessors)");
+  const tinygltf::Accessor& acc = model.accessors[size_t(index)];
+  const std::string where = "accessor " + std::to_string(index);
+  if (acc.sparse.isSparse) fail(label, where + ": sparse accessors are not supported");
+  if (acc.bufferView < 0 || size_t(acc.bufferView) >= model.bufferViews.size())
+    fail(label, where + ": bufferView " + std::to_string(acc.bufferView) + " does not exist");
+  const tinygltf::BufferView& view = model.bufferViews[size_t(acc.bufferView)];
+  const std::string view_name = "bufferView " + std::to_string(acc.bufferView);
+  if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
+    fail(label, view_name + ": buffer " + std::to_string(view.buffer) + " does not exist");
+  const std::vector<unsigned char>& buffer = model.buffers[size_t(view.buffer)].data;
+  auto view_end = accessorEnd(view.byteOffset, 0, 1, view.byteLength);
+  if (!view_end || *view_end > buffer.size())
+    fail(label, view_name + ": bytes " + std::to_string(view.byteOffset) + " + " +
+                    std::to_string(view.byteLength) + " exceed buffer " +
+                    std::to_string(view.buffer) + " of " + std::to_string(buffer.size()) +
+                    " bytes");
+
+  const size_t component = componentSize(acc.componentType);
+  const int components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(acc.type));
+  if (component == 0 || components <= 0)
+    fail(label, where + ": unsupported component type " + std::to_string(acc.componentType));
+  const size_t element = component * size_t(components);
+  const size_t stride = view.byteStride != 0 ? view.byteStride : element;
+  if (stride < element || stride % component != 0)
+    fail(label, view_name + ": byteStride " + std::to_string(stride) + " does not fit " +
+                    std::to_string(element) + "-byte elements of " + where);
+  auto end = accessorEnd(acc.byteOffset, stride, acc.count, element);
+  if (!end || *end > view.byteLength)
+    fail(label, where + ": " + std::to_string(acc.count) + " elements at offset " +
+                    std::to_string(acc.byteOffset) + " with stride " + std::to_string(stride) +
+                    " exceed " + view_name + " of " + std::to_string(view.byteLength) +
+                    " bytes");
+
+  AccessorView out;
+  out.data = buffer.data() + view.byteOffset + acc.byteOffset;
+  out.stride = stride;
+  out.count = acc.count;
+  out.component_type = acc.componentType;
+  out.type = acc.type;
+  return out;
+}
+
+// POSITION and NORMAL: float vectors (quantized attributes need an unsupported extension).
+AccessorView viewVec3(const tinygltf::Model& model, int index, const char* attribute,
+                      const std::string& label) {
+  AccessorView v = viewAccessor(model, index, label);
+  if (v.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT || v.type != TINYGLTF_TYPE_VEC3)
+    fail(label, "accessor " + std::to_string(index) + ": " + attribute +
+                    " must be FLOAT VEC3, not " + componentName(v.component_type) + " " +
+                    typeName(v.type));
+  return v;
+}
+
+AccessorView viewIndices(const tinygltf::Model& model, int index, const std::string& label) {
+  AccessorView v = viewAccessor(model, index, label);
+  bool unsigned_int = v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                      v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
+                      v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  if (!unsigned_int || v.type != TINYGLTF_TYPE_SCALAR)
+    fail(label, "accessor " + std::to_string(index) +
+                    ": indices must be UNSIGNED_BYTE/SHORT/INT SCALAR, not " +
+                    componentName(v.component_type) + " " + typeName(v.type));
+  return v;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Transforms (double precision, cast to float per vertex)
+
+// Rotation matrix of the quaternion (x, y, z, w), normalised first.
+glm::dmat3 rotationMatrix(double x, double y, double z, double w) {
+  const double n = std::sqrt(x * x + y * y + z * z + w * w);
+  x /= n, y /= n, z /= n, w /= n;
+  glm::dmat3 r;  // r[column][row]
+  r[0] = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w)};
+  r[1] = {2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w)};
+  r[2] = {2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y)};
+  return r;
+}
+
+void requireLength(const std::vector<double>& v, size_t n, const char* property,
+                   const std::string& node, const std::string& label) {
+  if (!v.empty() && v.size() != n)
+    fail(label, node + ": " + property + " must have " + std::to_string(n) + " numbers, not " +
+                    std::to_string(v.size()));
+}
+
+glm::dmat4 localTransform(const tinygltf::Node& node, const std::string& where,
+                          const std::string& label) {
+  requireLength(node.matrix, 16, "matrix", where, label);
+  requireLength(node.translation, 3, "translation", where, label);
+  requireLength(node.rotation, 4, "rotation", where, label);
+  requireLength(node.scale, 3, "scale", where, label);
+  glm::dmat4 m(1.0);
+  if (node.matrix.size() == 16) {
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[size_t(c * 4 + r)];  // column-major
+    return m;
+  }
+  if (node.rotation.size() == 4) {
+    const auto& q = node.rotation;
+    if (q[0] == 0 && q[1] == 0 && q[2] == 0 && q[3] == 0)
+      fail(label, where + ": rotation quaternion is zero");
+    m = glm::dmat4(rotationMatrix(q[0], q[1], q[2], q[3]));
+  }
+  if (node.scale.size() == 3)
+    for (int c = 0; c < 3; ++c) m[c] *= node.scale[size_t(c)];
+  if (node.translation.size() == 3)
+    m[3] = glm::dvec4(node.translation[0], node.translation[1], node.translation[2], 1.0);
+  return m;
+}
+
+glm::dvec3 transformPoint(const glm::dmat4& m, const glm::dvec3& p) {
+  return glm::dvec3(m * glm::dvec4(p, 1.0));
+}
+
+bool isFinite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Shading needs unit normals; a zero or non-finite vector falls back to `fallback`.
+glm::vec3 unitOr(const glm::dvec3& v, const glm::vec3& fallback) {
+  const double len = glm::length(v);
+  if (!(len > 0.0) || !std::isfinite(len)) return fallback;
+  glm::vec3 u(v / len);
+  return isFinite(u) ? u : fallback;
+}
+
+// Any unit vector serves a zero-area triangle, which is never shaded from a real hit.
+const glm::vec3 kArbitraryNormal{0.0f, 0.0f, 1.0f};
+
+glm::vec3 geometricNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  return unitOr(glm::cross(glm::dvec3(b - a), glm::dvec3(c - a)), kArbitraryNormal);
+}
+
+// Camera-to-world without scale or shear: keeps the viewing direction (-Z) and the up
+// vector's plane, as renderers expect a rigid camera frame.
+std::optional<glm::mat4> rigidFrame(const glm::dmat4& world) {
+  glm::dvec3 z(world[2]), y(world[1]);
+  glm::dvec3 x = glm::cross(y, z);
+  if (!(glm::length(z) > 0.0) || !(glm::length(x) > 0.0)) return std::nullopt;
+  z = glm::normalize(z);
+  x = glm::normalize(x);
+  y = glm::cross(z, x);
+  glm::dmat4 out(1.0);
+  out[0] = glm::dvec4(x, 0.0);
+  out[1] = glm::dvec4(y, 0.0);
+  out[2] = glm::dvec4(z, 0.0);
+  out[3] = world[3];
+  glm::mat4 f(out);
+  for (int c = 0; c < 4; ++c)
+    if (!isFinite(glm::vec3(f[c]))) return std::nullopt;
+  return f;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Materials
+
+double numberOr(const tinygltf::Value& object, const char* key, double fallback) {
+  if (!object.Has(key)) return fallback;
+  const tinygltf::Value& v = object.Get(key);
+  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+glm::vec3 colorOr(const tinygltf::Value& object, const char* key, glm::vec3 fallback) {
+  if (!object.Has(key)) return fallback;
+  const tinygltf::Value& v = object.Get(key);
+  if (!v.IsArray() || v.ArrayLen() != 3) return fallback;
+  glm::vec3 c;
+  for (int i = 0; i < 3; ++i) {
+    if (!v.Get(i).IsNumber()) return fallback;
+    c[i] = float(v.Get(i).GetNumberAsDouble());
+  }
+  return c;
+}
+
+const tinygltf::Value& extension(const tinygltf::ExtensionMap& map, const char* name) {
+  static const tinygltf::Value kNone;
+  auto it = map.find(name);
+  return it == map.end() ? kNone : it->second;
+}
+
+bool usesTexture(const tinygltf::Material& m) {
+  if (m.pbrMetallicRoughness.baseColorTexture.index >= 0 ||
+      m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 ||
+      m.normalTexture.index >= 0 || m.occlusionTexture.index >= 0 ||
+      m.emissiveTexture.index >= 0)
+    return true;
+  // Material extensions name their textures "...Texture" (transmissionTexture, ...).
+  for (const auto& [name, value] : m.extensions)
+    for (const std::string& key : value.Keys())
+      if (key.size() >= 7 && key.compare(key.size() - 7, 7, "Texture") == 0) return true;
+  return false;
+}
+
+Material convertMaterial(const tinygltf::Material& m, size_t index) {
+  Material out;
+  out.name = m.name.empty() ? "material " + std::to_string(index) : m.name;
+  const auto& pbr = m.pbrMetallicRoughness;
+  if (pbr.baseColorFactor.size() >= 3)
+    out.base_color = {pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]};
+  out.metallic = float(pbr.metallicFactor);
+  out.roughness = float(pbr.roughnessFactor);
+  out.double_sided = m.doubleSided;
+
+  out.transmission = float(numberOr(extension(m.extensions, "KHR_materials_transmission"),
+                                    "transmissionFactor", 0.0));
+  out.ior = float(numberOr(extension(m.extensions, "KHR_materials_ior"), "ior", 1.5));
+
+  const tinygltf::Value& volume = extension(m.extensions, "KHR_materials_volume");
+  out.attenuation_color = colorOr(volume, "attenuationColor", glm::vec3(1.0f));
+  // glTF's default distance is +infinity, i.e. no absorption, which Material stores as 0.
+  const double distance = numberOr(volume, "attenuationDistance", 0.0);
+  out.attenuation_distance = std::isfinite(distance) && distance > 0.0 ? float(distance) : 0.0f;
+
+  const double strength =
+      numberOr(extension(m.extensions, "KHR_materials_emissive_strength"), "emissiveStrength", 1.0);
+  if (m.emissiveFactor.size() == 3)
+    out.emissive = glm::vec3(glm::dvec3(m.emissiveFactor[0], m.emissiveFactor[1],
+                                        m.emissiveFactor[2]) * strength);
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lights and cameras
+
+std::optional<Light> convertLight(const tinygltf::Light& l, const glm::dmat4& world,
+                                  const std::string& where, const std::string& label,
+                                  std::vector<std::string>& warnings) {
+  Light out;
+  if (l.type == "point") out.type = LightType::Point;
+  else if (l.type == "spot") out.type = LightType::Spot;
+  else if (l.type == "directional") out.type = LightType::Directional;
+  else {
+    warnings.push_back(where + ": light type '" + l.type + "' is not supported; ignored");
+    return std::nullopt;
+  }
+  // tinygltf leaves `color` empty when absent; the spec default is white.
+  if (l.color.size() == 3) out.color = {l.color[0], l.color[1], l.color[2]};
+  else if (!l.color.empty()) fail(label, where + ": light color must have 3 numbers");
+  out.intensity = float(l.intensity);
+  out.range = float(l.range);
+  out.inner_cone = float(l.spot.innerConeAngle);
+  out.outer_cone = float(l.spot.outerConeAngle);
+  out.position = glm::vec3(transformPoint(world, glm::dvec3(0.0)));
+  glm::dvec3 dir = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
+  if (!(glm::length(dir) > 0.0) || !std::isfinite(glm::length(dir)))
+    fail(label, where + ": light transform is degenerate");
+  out.direction = glm::vec3(glm::normalize(dir));
+  if (!isFinite(out.position) || !isFinite(out.direction))
+    fail(label, where + ": light transform is not finite");
+  return out;
+}
+
+Camera convertCamera(const tinygltf::Camera& c, const glm::dmat4& world, const std::string& where,
+                     const std::string& label) {
+  Camera out;
+  out.name = c.name;
+  if (c.type == "perspective") {
+    const double yfov = c.perspective.yfov;
+    if (!(yfov > 0.0 && yfov < kPi)) fail(label, where + ": perspective yfov must be in (0, pi)");
+    out.yfov = float(yfov);
+    out.aspect = std::isfinite(c.perspective.aspectRatio) && c.perspective.aspectRatio > 0
+                     ? float(c.perspective.aspectRatio)
+                     : 0.0f;
+  } else if (c.type == "orthographic") {
+    const double xmag = std::abs(c.orthographic.xmag), ymag = std::abs(c.orthographic.ymag);
+    if (!(xmag > 0.0 && std::isfinite(xmag) && ymag > 0.0 && std::isfinite(ymag)))
+      fail(label, where + ": orthographic xmag and ymag must be non-zero and finite");
+    out.orthographic = true;
+    out.xmag = float(xmag);
+    out.ymag = float(ymag);
+  } else {
+    fail(label, where + ": camera type '" + c.type + "' is neither perspective nor orthographic");
+  }
+  std::optional<glm::mat4> frame = rigidFrame(world);
+  if (!frame) fail(label, where + ": camera transform is degenerate");
+  out.world = *frame;
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scene building
+
+class SceneBuilder {
+ public:
+  SceneBuilder(const tinygltf::Model& model, const std::string& label,
+               const GltfLoadOptions& options)
+      : model_(model), label_(label), options_(options) {}
+
+  Scene build(std::vector<std::string> parse_warnings) {
+    scene_.warnings = std::move(parse_warnings);
+    checkRequiredExtensions(model_, label_);
+    convertMaterials();
+    traverse(rootNodes());
+    if (scene_.positions.empty()) fail(label_, "the scene has no triangles");
+    finishNormals();
+    chooseCamera();
+    scene_.has_lights = !scene_.lights.empty();
+    summariseWarnings();
+    for (std::string& w : scene_.warnings) w = oneLine(w);  // names may hold newlines
+    return std::move(scene_);
+  }
+
+ private:
+  struct CameraNode {
+    int node;
+    glm::dmat4 world;
+  };
+
+  std::string nodeName(int index) const {
+    return named("node", size_t(index), model_.nodes[size_t(index)].name);
+  }
+
+  void convertMaterials() {
+    bool textured = false;
+    for (size_t i = 0; i < model_.materials.size(); ++i) {
+      scene_.materials.push_back(convertMaterial(model_.materials[i], i));
+      textured = textured || usesTexture(model_.materials[i]);
+    }
+    if (textured) scene_.warnings.push_back("textures are ignored");
+  }
+
+  std::vector<int> rootNodes() const {
+    if (model_.scenes.empty()) {
+      // No scene: every node that is nobody's child, in index order.
+      std::vector<bool> is_child(model_.nodes.size(), false);
+      for (const auto& node : model_.nodes)
+        for (int child : node.children)
+          if (child >= 0 && size_t(child) < is_child.size()) is_child[size_t(child)] = true;
+      std::vector<int> roots;
+      for (size_t i = 0; i < model_.nodes.size(); ++i)
+        if (!is_child[i]) roots.push_back(int(i));
+      return roots;
+    }
+    int index = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+    if (size_t(index) >= model_.scenes.size())
+      fail(label_, "default scene " + std::to_string(index) + " does not exist (" +
+                       std::to_string(model_.scenes.size()) + " scenes)");
+    return model_.scenes[size_t(index)].nodes;
+  }
+
+  // Depth-first, children in file order, a node before its children. An explicit stack
+  // keeps hostile, deep hierarchies off the call stack.
+  void traverse(const std::vector<int>& roots) {
+    struct Entry {
+      int node;
+      glm::dmat4 parent_world;
+      bool leaving;  // marks the end of the node's subtree
+    };
+    enum : char { kUnseen, kOnPath, kDone };
+    std::vector<char> state(model_.nodes.size(), kUnseen);
+    std::vector<Entry> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it)
+      stack.push_back({*it, glm::dmat4(1.0), false});
+    while (!stack.empty()) {
+      Entry e = stack.back();
+      stack.pop_back();
+      if (e.leaving) {
+        state[size_t(e.node)] = kDone;
+        continue;
+      }
+      if (e.node < 0 || size_t(e.node) >= model_.nodes.size())
+        fail(label_, "node " + std::to_string(e.node) + " does not exist (" +
+                         std::to_string(model_.nodes.size()) + " nodes)");
+      char& s = state[size_t(e.node)];
+      if (s == kOnPath) fail(label_, nodeName(e.node) + ": the node hierarchy has a cycle");
+      if (s == kDone)
+        fail(label_, nodeName(e.node) + ": reached twice (a node may have only one parent)");
+      s = kOnPath;
+      const tinygltf::Node& node = model_.nodes[size_t(e.node)];
+      const glm::dmat4 world = e.parent_world * localTransform(node, nodeName(e.node), label_);
+      visit(e.node, world);
+      stack.push_back({e.node, glm::dmat4(1.0), true});
+      for (auto it = node.children.rbegin(); it != node.children.rend(); ++it)
+        stack.push_back({*it, world, false});
+    }
+  }
+
+  void visit(int index, const glm::dmat4& world) {
+    const tinygltf::Node& node = model_.nodes[size_t(index)];
+    if (node.mesh >= 0) addMesh(node.mesh, world, index);
+    if (node.camera >= 0) {
+      if (size_t(node.camera) >= model_.cameras.size())
+        fail(label_, nodeName(index) + ": camera " + std::to_string(node.camera) +
+                         " does not exist");
+      camera_nodes_.push_back({index, world});
+    }
+    addLight(node, index, world);
+  }
+
+  void addLight(const tinygltf::Node& node, int index, const glm::dmat4& world) {
+    const tinygltf::Value& ext = extension(node.extensions, "KHR_lights_punctual");
+    if (!ext.Has("light")) return;
+    const tinygltf::Value& v = ext.Get("light");
+    const double light = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+    if (!(light >= 0.0 && light < double(model_.lights.size()) && light == std::floor(light)))
+      fail(label_, nodeName(index) + ": KHR_lights_punctual light index does not exist (" +
+                       std::to_string(model_.lights.size()) + " lights)");
+    const tinygltf::Light& l = model_.lights[size_t(light)];
+    std::string where = nodeName(index) + " " + named("light", size_t(light), l.name);
+    if (auto converted = convertLight(l, world, where, label_, scene_.warnings))
+      scene_.lights.push_back(*converted);
+  }
+
+  void addMesh(int mesh_index, const glm::dmat4& world, int node_index) {
+    if (size_t(mesh_index) >= model_.meshes.size())
+      fail(label_, nodeName(node_index) + ": mesh " + std::to_string(mesh_index) +
+                       " does not exist");
+    const tinygltf::Mesh& mesh = model_.meshes[size_t(mesh_index)];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p)
+      addPrimitive(mesh.primitives[p],
+                   named("mesh", size_t(mesh_index), mesh.name) + " primitive " +
+                       std::to_string(p),
+                   world);
+  }
+
+  int materialIndex(int material, const std::string& where) {
+    if (material >= 0) {
+      if (size_t(material) >= model_.materials.size())
+        fail(label_, where + ": material " + std::to_string(material) + " does not exist");
+      return material;
+    }
+    if (default_material_ < 0) {
+      default_material_ = int(scene_.materials.size());
+      scene_.materials.push_back(Material{});
+    }
+    return default_material_;
+  }
+
+  static int attribute(const tinygltf::Primitive& prim, const char* name) {
+    auto it = prim.attributes.find(name);
+    return it == prim.attributes.end() ? -1 : it->second;
+  }
+
+  void addPrimitive(const tinygltf::Primitive& prim, const std::string& where,
+                    const glm::dmat4& world) {
+    if (prim.mode < -1 || prim.mode > TINYGLTF_MODE_TRIANGLE_FAN)
+      fail(label_, where + ": mode " + std::to_string(prim.mode) + " is not a glTF mode");
+    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
+      ++scene_.skipped_primitives;
+      return;
+    }
+    const int position_index = attribute(prim, "POSITION");
+    if (position_index < 0) {
+      // The spec asks to skip primitives without positions.
+      scene_.warnings.push_back(where + ": no POSITION attribute; skipped");
+      ++scene_.skipped_primitives;
+      return;
+    }
+    const AccessorView positions = viewVec3(model_, position_index, "POSITION", label_);
+    std::optional<AccessorView> normals;
+    if (int n = attribute(prim, "NORMAL"); n >= 0) {
+      normals = viewVec3(model_, n, "NORMAL", label_);
+      if (normals->count != positions.count)
+        fail(label_, "accessor " + std::to_string(n) + ": NORMAL count " +
+                         std::to_string(normals->count) + " differs from POSITION count " +
+                         std::to_string(positions.count));
+    }
+    const std::vector<uint32_t> indices = triangleIndices(prim, positions.count, where);
+    const int material = materialIndex(prim.material, where);
+    const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(world)));
+    const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
+
+    for (size_t t = 0; t < indices.size(); t += 3) {
+      glm::vec3 p[3], n[3];
+      for (int k = 0; k < 3; ++k) {
+        const size_t vertex = indices[t + size_t(k)];
+        p[k] = glm::vec3(transformPoint(world, positions.vec3(vertex)));
+        // Zero marks "no usable normal" (absent, zero or NaN in the file).
+        n[k] = normals ? unitOr(normal_matrix * normals->vec3(vertex), glm::vec3(0.0f))
+                       : glm::vec3(0.0f);
+      }
+      if (!isFinite(p[0]) || !isFinite(p[1]) || !isFinite(p[2])) {
+        ++scene_.dropped_degenerate;
+        continue;
+      }
+      // The glTF spec: a mirroring transform turns the winding clockwise; swap it back.
+      if (mirrored) std::swap(p[1], p[2]), std::swap(n[1], n[2]);
+      const glm::vec3 face = geometricNormal(p[0], p[1], p[2]);
+      for (int k = 0; k < 3; ++k) {
+        scene_.positions.push_back(p[k]);
+        // Unusable file normals (zero, NaN) fall back to the face normal.
+        scene_.normals.push_back(n[k] == glm::vec3(0.0f) ? face : n[k]);
+      }
+      scene_.material_of.push_back(material);
+      has_normals_.push_back(normals.has_value());
+    }
+  }
+
+  // The primitive's vertex indices, three per triangle, all checked against vertex_count.
+  std::vector<uint32_t> triangleIndices(const tinygltf::Primitive& prim, size_t vertex_count,
+                                        const std::string& where) const {
+    std::vector<uint32_t> out;
+    if (prim.indices < 0) {
+      if (vertex_count % 3 != 0)
+        fail(label_, where + ": " + std::to_string(vertex_count) +
+                         " vertices is not a multiple of 3 for triangles");
+      if (vertex_count > std::numeric_limits<uint32_t>::max())
+        fail(label_, where + ": too many vertices");
+      out.resize(vertex_count);
+      for (size_t i = 0; i < vertex_count; ++i) out[i] = uint32_t(i);
+      return out;
+    }
+    const AccessorView indices = viewIndices(model_, prim.indices, label_);
+    if (indices.count % 3 != 0)
+      fail(label_, "accessor " + std::to_string(prim.indices) + ": " +
+                       std::to_string(indices.count) +
+                       " indices is not a multiple of 3 for triangles");
+    out.resize(indices.count);
+    for (size_t i = 0; i < indices.count; ++i) {
+      out[i] = indices.index(i);
+      if (out[i] >= vertex_count)
+        fail(label_, "accessor " + std::to_string(prim.indices) + ": index " +
+                         std::to_string(out[i]) + " out of range for " +
+                         std::to_string(vertex_count) + " vertices");
+    }
+    return out;
+  }
+
+  // Normals are all-or-nothing: triangles from primitives without NORMAL keep the face normal
+  // written in addPrimitive; if no primitive had normals, there are none.
+  void finishNormals() {
+    if (std::find(has_normals_.begin(), has_normals_.end(), true) == has_normals_.end())
+      scene_.normals.clear();
+  }
+
+  void chooseCamera() {
+    if (camera_nodes_.empty()) {
+      if (!options_.camera_name.empty())
+        fail(label_, "camera '" + options_.camera_name + "' not found: the scene has no camera");
+      return;
+    }
+    const CameraNode* chosen = &camera_nodes_.front();
+    if (!options_.camera_name.empty()) {
+      chosen = nullptr;
+      std::string available;
+      for (const CameraNode& c : camera_nodes_) {
+        const std::string& node_name = model_.nodes[size_t(c.node)].name;
+        const std::string& camera_name =
+            model_.cameras[size_t(model_.nodes[size_t(c.node)].camera)].name;
+        if (!chosen && (camera_name == options_.camera_name || node_name == options_.camera_name))
+          chosen = &c;
+        available += (available.empty() ? "'" : ", '") + camera_name + "' (node '" +
+                     node_name + "')";
+      }
+      if (!chosen)
+        fail(label_, "camera '" + options_.camera_name + "' not found; available: " + available);
+    }
+    const tinygltf::Node& node = model_.nodes[size_t(chosen->node)];
+    scene_.camera = convertCamera(model_.cameras[size_t(node.camera)], chosen->world,
+                                  nodeName(chosen->node) + " camera " +
+                                      std::to_string(node.camera),
+                                  label_);
+    scene_.has_camera = true;
+  }
+
+  void summariseWarnings() {
+    if (scene_.skipped_primitives > 0)
+      scene_.warnings.push_back(std::to_string(scene_.skipped_primitives) +
+                                " primitive(s) skipped (points, lines, strips, fans or no "
+                                "positions)");
+    if (scene_.dropped_degenerate > 0)
+      scene_.warnings.push_back(std::to_string(scene_.dropped_degenerate) +
+                                " triangle(s) with NaN/Inf coordinates dropped");
+  }
+
+  const tinygltf::Model& model_;
+  const std::string& label_;
+  const GltfLoadOptions& options_;
+  Scene scene_;
+  std::vector<bool> has_normals_;  // per triangle: from a primitive with NORMAL
+  std::vector<CameraNode> camera_nodes_;
+  int default_material_ = -1;
+};
+
+[[noreturn]] void cannotOpen(const std::string& path, const std::string& reason) {
+  throw SceneError(oneLine("cannot open scene '" + path + "': " + reason));
+}
+
+std::vector<unsigned char> readSceneFile(const std::string& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) cannotOpen(path, "is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) cannotOpen(path, std::strerror(errno));
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
+                                   std::istreambuf_iterator<char>());
+  if (in.bad()) cannotOpen(path, "read error");
+  return bytes;
+}
+
+}  // namespace
+
+Scene loadGltfFromMemory(const unsigned char* data, size_t size, const std::string& base_dir,
+                         const std::string& label, const GltfLoadOptions& options) {
+  std::vector<std::string> warnings;
+  tinygltf::Model model = parseModel(data, size, base_dir, label, warnings);
+  return SceneBuilder(model, label, options).build(std::move(warnings));
+}
+
+Scene loadGltfFile(const std::string& path, const GltfLoadOptions& options) {
+  const std::vector<unsigned char> bytes = readSceneFile(path);
+
+  // A .glb must carry the magic; anything else is sniffed by loadGltfFromMemory.
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".glb" && !startsWithMagic(bytes.data(), bytes.size()))
+    fail(path, "not a binary glTF (missing 'glTF' magic)");
+
+  // External files live next to the scene ("." for a bare file name: empty would forbid them).
+  fs::path base_dir = fs::path(path).parent_path();
+  if (base_dir.empty()) base_dir = ".";
+  return loadGltfFromMemory(bytes.data(), bytes.size(), base_dir.string(), path, options);
+}
+
+}  // namespace gridrt

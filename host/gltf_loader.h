@@ -1,0 +1,53 @@
+// glTF 2.0 (.gltf / .glb) -> gridrt::Scene, through tinygltf.
+//
+// What the loader produces (see scene.h for the fields):
+// - Traversal: the default scene (`scene`, else scene 0; with no scenes at all, every node
+//   that is nobody's child, in index order). Nodes depth-first in file order, a node's own
+//   mesh before its children. World = parent * local; local from `matrix` or T * R * S.
+// - Triangles are numbered in that order: node by node, each mesh's primitives in order, each
+//   primitive's triangles in index order. Only TRIANGLES primitives are loaded; points, lines,
+//   strips and fans are skipped and counted in Scene::skipped_primitives (per instance).
+//   Where a node's world transform mirrors (negative determinant), vertices 1 and 2 of each
+//   triangle are swapped so that front faces stay counter-clockwise in world space, as the
+//   glTF spec asks; the triangle order is unchanged.
+// - Normals: world-space (inverse transpose), unit length; a primitive without NORMAL gets its
+//   triangles' geometric normals when any other primitive has normals, and Scene::normals
+//   stays empty when none has.
+// - Triangles with a NaN/Inf world coordinate are dropped (Scene::dropped_degenerate).
+// - Materials: Scene::materials[i] is glTF material i; a "default" Material{} is appended once
+//   if some primitive has no material. Textures are ignored (never decoded), with a warning.
+// - Camera: the first camera node in traversal order (or the one named by LoadOptions); its
+//   world matrix keeps the translation, with the rotation part orthonormalised (scale and
+//   shear removed) so that it is a pure camera-to-world rigid transform.
+// - Lights: KHR_lights_punctual on traversed nodes, in traversal order.
+// - Security: external files (buffers, images) must lie inside the scene's folder: absolute
+//   URIs, ".." components and symbolic links leading out are rejected; data URIs over
+//   256 MiB are rejected before decoding.
+//
+// Every failure throws gridrt::SceneError with a one-line message naming the file (or label)
+// and the element, e.g. "scene.glb: accessor 3: index 912 out of range for 453 vertices".
+#pragma once
+#include <cstddef>
+#include <string>
+
+#include "scene.h"
+
+namespace gridrt {
+
+struct GltfLoadOptions {
+  // Empty: the first camera in traversal order. Otherwise the first camera node whose camera
+  // name or node name equals this; a SceneError lists the available names if none does.
+  std::string camera_name;
+};
+
+// Loads a .gltf or .glb file (binary when the extension is .glb or the data begins with the
+// "glTF" magic). External files are looked up next to `path`.
+Scene loadGltfFile(const std::string& path, const GltfLoadOptions& options = {});
+
+// Loads glTF from memory: binary if it begins with "glTF", JSON otherwise. External files are
+// looked up in `base_dir`; with an empty base_dir no external file may be read. `label` names
+// the data in messages (a file name, or e.g. "fuzz input").
+Scene loadGltfFromMemory(const unsigned char* data, size_t size, const std::string& base_dir,
+                         const std::string& label, const GltfLoadOptions& options = {});
+
+}  // namespace gridrt

@@ -1,0 +1,356 @@
+// Conformance: the grid intersectors (gridrt, gridrt with the emulated interrupt, dda)
+// return exactly the hits of the brute-force kernel — same primitive id, same t bit for
+// bit — on every pixel of every scene at several grid resolutions, on random rays, and
+// on the cases where the GridRT method fails if done carelessly.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include "brute_intersector.h"
+#include "camera_rays.h"
+#include "cl_runtime.h"
+#include "dda_intersector.h"
+#include "default_scene.h"
+#include "gltf_loader.h"
+#include "gridrt_intersector.h"
+#include "prepared_triangles.h"
+#include "test_support.h"
+#include "uniform_grid.h"
+
+namespace gridrt {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+class Conformance : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
+    runtime_ = std::make_unique<ClRuntime>("");
+  }
+
+  // Number of rays where `got` differs from `want` (prim, or t bitwise); prints the first.
+  static size_t mismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& got,
+                           const std::string& label) {
+    size_t bad = 0;
+    for (size_t i = 0; i < want.size(); ++i) {
+      bool same = want[i].prim == got[i].prim &&
+                  (want[i].prim < 0 || std::memcmp(&want[i].t, &got[i].t, sizeof(float)) == 0);
+      if (!same && bad++ == 0)
+        ADD_FAILURE() << label << ": ray " << i << " brute prim " << want[i].prim << " t "
+                      << want[i].t << ", got prim " << got[i].prim << " t " << got[i].t;
+    }
+    return bad;
+  }
+
+  // Runs every grid intersector at each setting against brute force on `rays`.
+  void expectAllAgree(const std::vector<GrTriangle>& tris, const Bounds& bounds,
+                      const std::vector<GrRay>& rays, const std::vector<GridSettings>& grids,
+                      const std::string& label) {
+    BruteIntersector brute(*runtime_, tris);
+    std::vector<GrHit> want, got;
+    brute.intersect(rays, HitMode::Closest, want, nullptr);
+    std::vector<GrHit> want_any;
+    brute.intersect(rays, HitMode::AnyHit, want_any, nullptr);
+    for (const auto& settings : grids) {
+      UniformGrid grid = buildUniformGrid(tris, bounds, settings);
+      std::string where = label + " grid " + std::to_string(grid.info.nx) + "x" +
+                          std::to_string(grid.info.ny) + "x" + std::to_string(grid.info.nz);
+      GridRtIntersector gridrt(*runtime_, grid, false);
+      GridRtIntersector interrupt(*runtime_, grid, true);
+      DdaIntersector dda(*runtime_, grid);
+      gridrt.intersect(rays, HitMode::Closest, got, nullptr);
+      EXPECT_EQ(mismatches(want, got, where + " gridrt"), 0u);
+      interrupt.intersect(rays, HitMode::Closest, got, nullptr);
+      EXPECT_EQ(mismatches(want, got, where + " gridrt-interrupt"), 0u);
+      dda.intersect(rays, HitMode::Closest, got, nullptr);
+      EXPECT_EQ(mismatches(want, got, where + " dda"), 0u);
+      // Any-hit (shadow) mode: hit or miss must agree with the closest-hit answer.
+      for (Intersector* x : {static_cast<Intersector*>(&gridrt), static_cast<Intersector*>(&dda)}) {
+        x->intersect(rays, HitMode::AnyHit, got, nullptr);
+        size_t differ = 0;
+        for (size_t i = 0; i < rays.size(); ++i)
+          differ += (got[i].prim >= 0) != (want[i].prim >= 0);
+        EXPECT_EQ(differ, 0u) << where << " " << x->name() << " any-hit";
+      }
+    }
+  }
+
+  static std::vector<GrRay> cameraRays(const Scene& scene, int w, int h) {
+    Camera camera = scene.has_camera ? scene.camera : defaultCamera(sceneBounds(scene));
+    std::vector<GrRay> rays;
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) rays.push_back(cameraRay(camera, w, h, i, j, 0.5f, 0.5f));
+    return rays;
+  }
+
+  static std::vector<GridSettings> standardGrids(const Bounds& b, size_t triangles) {
+    GridSettings one, three, fine, automatic;
+    one.automatic = three.automatic = fine.automatic = false;
+    one.dims = {1, 1, 1};
+    three.dims = {3, 3, 3};
+    // "Very fine": four times the auto resolution per axis (64x the voxels).
+    fine.dims = glm::min(autoGridResolution(b, triangles, kDefaultGridDensity) * 4,
+                         glm::ivec3(160));
+    return {one, three, automatic, fine};
+  }
+
+  void checkScene(const Scene& scene, const std::string& label, int w, int h) {
+    auto tris = prepareTriangles(scene);
+    Bounds b = sceneBounds(scene);
+    expectAllAgree(tris, b, cameraRays(scene, w, h), standardGrids(b, tris.size()), label);
+  }
+
+  std::unique_ptr<ClRuntime> runtime_;
+};
+
+TEST_F(Conformance, BunnyRes4AtThePapersGridsMatchesBruteOnEveryPixel) {
+  Scene scene = loadGltfFile(test::sharedScene("bunny_res4.glb"));
+  auto tris = prepareTriangles(scene);
+  std::vector<GridSettings> grids;
+  for (int n : {1, 2, 3, 4, 5, 6}) {
+    GridSettings s;
+    s.automatic = false;
+    s.dims = {n, n, n};
+    grids.push_back(s);
+  }
+  grids.push_back(GridSettings{});
+  expectAllAgree(tris, sceneBounds(scene), cameraRays(scene, 320, 240), grids, "bunny_res4");
+}
+
+class SharedScenes : public Conformance, public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(SharedScenes, EveryPixelMatchesBruteAtEveryGrid) {
+  Scene scene = loadGltfFile(test::sharedScene(GetParam()));
+  // Large meshes at a smaller image keep CI time bounded; every pixel is still compared.
+  bool large = scene.triangleCount() > 20000;
+  checkScene(scene, GetParam(), large ? 160 : 320, large ? 120 : 240);
+}
+
+INSTANTIATE_TEST_SUITE_P(Conformance, SharedScenes,
+                         ::testing::Values("bunny_res4.glb", "bunny_res3.glb", "bunny_res2.glb",
+                                           "bunny.glb", "teapot.glb", "loader_test.glb",
+                                           "OrientationTest.glb",
+                                           "TransmissionRoughnessTest.glb"),
+                         [](const auto& info) {
+                           std::string n = info.param;
+                           return n.substr(0, n.find('.'));
+                         });
+
+class ProjectScenes : public Conformance, public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(ProjectScenes, EveryPixelMatchesBruteAtEveryGrid) {
+  Scene scene = loadGltfFile(test::sourcePath(std::string("scenes/") + GetParam()));
+  checkScene(scene, GetParam(), 320, 240);
+}
+
+INSTANTIATE_TEST_SUITE_P(Conformance, ProjectScenes,
+                         ::testing::Values("default.gltf", "quad_light.gltf",
+                                           "refraction_slab.gltf", "mirror_test.gltf"),
+                         [](const auto& info) {
+                           std::string n = info.param;
+                           return n.substr(0, n.find('.'));
+                         });
+
+TEST_F(Conformance, BuiltInDefaultSceneMatchesBrute) {
+  checkScene(makeDefaultScene(), "default scene", 320, 240);
+}
+
+// Random rays: origins inside and outside the grid, all directions, with a share of
+// axis-parallel directions including -0.0 components.
+std::vector<GrRay> randomRays(const Bounds& b, size_t count, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::normal_distribution<float> gauss;
+  glm::vec3 c = b.center(), e = b.extent();
+  std::vector<GrRay> rays;
+  for (size_t k = 0; k < count; ++k) {
+    // Half inside the box, half in a box three times larger around it.
+    float spread = k % 2 ? 3.0f : 1.0f;
+    glm::vec3 o = c + (glm::vec3(unit(rng), unit(rng), unit(rng)) - 0.5f) * e * spread;
+    glm::vec3 d;
+    if (k % 5 == 0) {
+      int axis = int(k / 5) % 3;
+      float sign = (k / 15) % 2 ? 1.0f : -1.0f;
+      d = glm::vec3(((k / 30) % 2) ? -0.0f : 0.0f);
+      d[axis] = sign;
+    } else {
+      do d = glm::vec3(gauss(rng), gauss(rng), gauss(rng));
+      while (glm::length(d) < 1e-3f);
+      d = glm::normalize(d);
+    }
+    rays.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, kInf});
+  }
+  return rays;
+}
+
+TEST_F(Conformance, RandomRaysInsideAndOutsideTheGridMatchBrute) {
+  Scene scene = loadGltfFile(test::sharedScene("bunny_res4.glb"));
+  auto tris = prepareTriangles(scene);
+  Bounds b = sceneBounds(scene);
+  expectAllAgree(tris, b, randomRays(b, 20000, 7), standardGrids(b, tris.size()), "random");
+}
+
+TEST_F(Conformance, RandomRaysInTheClosedDefaultBoxMatchBrute) {
+  Scene scene = makeDefaultScene();
+  auto tris = prepareTriangles(scene);
+  Bounds b = sceneBounds(scene);
+  expectAllAgree(tris, b, randomRays(b, 20000, 11), standardGrids(b, tris.size()), "box");
+}
+
+// ---- Targeted cases -------------------------------------------------------------------
+
+GrTriangle tri(glm::vec3 a, glm::vec3 b, glm::vec3 c, int prim) {
+  glm::vec3 e1 = b - a, e2 = c - a;
+  return GrTriangle{a.x, a.y, a.z, e1.x, e1.y, e1.z, e2.x, e2.y, e2.z, prim, 0, 0};
+}
+
+Bounds boundsOf(const std::vector<GrTriangle>& tris) {
+  Bounds b;
+  for (const auto& t : tris) {
+    glm::vec3 a(t.v0x, t.v0y, t.v0z);
+    b.grow(a);
+    b.grow(a + glm::vec3(t.e1x, t.e1y, t.e1z));
+    b.grow(a + glm::vec3(t.e2x, t.e2y, t.e2z));
+  }
+  return b;
+}
+
+GridSettings dims(int x, int y, int z) {
+  GridSettings s;
+  s.automatic = false;
+  s.dims = {x, y, z};
+  return s;
+}
+
+GrRay ray(glm::vec3 o, glm::vec3 d) {
+  d = glm::normalize(d);
+  return GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, kInf};
+}
+
+TEST_F(Conformance, BigTriangleWhoseHitLiesInALaterVoxelLosesToACloserSmallOne) {
+  // A big slanted triangle overlaps the first voxel the ray enters, but the ray meets it
+  // only in the last voxel; a small triangle in the middle voxel is closer. Without the
+  // in-voxel rule the first PE would report the big triangle and win.
+  std::vector<GrTriangle> tris = {
+      tri({-1, -1, -4}, {4, -1, 0.5f}, {-1, 4, 0.5f}, 0),  // big, slanted
+      tri({-0.2f, -0.2f, -1.5f}, {0.2f, -0.2f, -1.5f}, {0.0f, 0.2f, -1.5f}, 1),
+      tri({3.9f, 3.9f, -3.9f}, {4, 3.9f, -3.9f}, {3.9f, 4, -3.9f}, 2)};  // stretches the box
+  Bounds b = boundsOf(tris);
+  std::vector<GrRay> rays = {ray({0.0f, 0.0f, 1.0f}, {0, 0, -1}),
+                             ray({0.05f, 0.05f, 1.0f}, {0.01f, 0.0f, -1})};
+  expectAllAgree(tris, b, rays, {dims(1, 1, 4), dims(3, 3, 3), dims(1, 1, 16)}, "big");
+  UniformGrid grid = buildUniformGrid(tris, b, dims(1, 1, 4));
+  GridRtIntersector gridrt(*runtime_, grid, false);
+  std::vector<GrHit> hits;
+  gridrt.intersect(rays, HitMode::Closest, hits, nullptr);
+  EXPECT_EQ(hits[0].prim, 1);
+}
+
+TEST_F(Conformance, RaysThroughVoxelEdgesAndCornersAreNotMissed) {
+  // A 4x4x4 grid over [0,4]^3 with unit cells (the triangles pin the box); rays along
+  // voxel edges and through voxel corners hit triangles sitting on those edges/corners.
+  std::vector<GrTriangle> tris = {tri({0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}, 0),
+                                  tri({4, 4, 4}, {3.99f, 4, 4}, {4, 3.99f, 4}, 1),
+                                  tri({1.5f, 2, 2}, {2.5f, 2, 2}, {2, 2, 3}, 2),
+                                  tri({1, 1, 1}, {3, 1, 3}, {1, 3, 3}, 3)};
+  Bounds b = boundsOf(tris);
+  std::vector<GrRay> rays;
+  for (float x : {1.0f, 2.0f, 3.0f})
+    for (float y : {1.0f, 2.0f, 3.0f}) {
+      rays.push_back(ray({x, y, 10.0f}, {0, 0, -1}));      // along a voxel edge
+      rays.push_back(ray({x, -1.0f, y}, {0, 1, 0}));
+    }
+  rays.push_back(ray({-1, -1, -1}, {1, 1, 1}));           // through every corner
+  rays.push_back(ray({5, 5, 5}, {-1, -1, -1}));
+  rays.push_back(ray({2, 2, 10}, {0, 0, -1}));            // hits the edge-on triangle's edge
+  expectAllAgree(tris, b, rays, {dims(4, 4, 4), dims(2, 2, 2), dims(8, 8, 8)}, "edges");
+}
+
+TEST_F(Conformance, TriangleInAVoxelBoundaryPlaneIsFoundFromBothSides) {
+  // The plane z = 2 is a voxel boundary of the 4x4x4 grid over [0,4]^3.
+  std::vector<GrTriangle> tris = {tri({0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}, 0),
+                                  tri({4, 4, 4}, {3.99f, 4, 4}, {4, 3.99f, 4}, 1),
+                                  tri({0.5f, 0.5f, 2}, {3.5f, 0.5f, 2}, {0.5f, 3.5f, 2}, 2)};
+  Bounds b = boundsOf(tris);
+  std::vector<GrRay> rays;
+  for (int k = 0; k < 50; ++k) {
+    float x = 0.6f + 0.03f * k, y = 0.7f + 0.02f * k;  // inside the triangle (x + y < 4)
+    rays.push_back(ray({x, y, 10}, {0, 0, -1}));
+    rays.push_back(ray({x, y, -10}, {0.01f, 0, 1}));
+  }
+  expectAllAgree(tris, b, rays, {dims(4, 4, 4), dims(1, 1, 2), dims(8, 8, 8)}, "plane");
+  UniformGrid grid = buildUniformGrid(tris, b, dims(4, 4, 4));
+  GridRtIntersector gridrt(*runtime_, grid, false);
+  std::vector<GrHit> hits;
+  gridrt.intersect(rays, HitMode::Closest, hits, nullptr);
+  for (const auto& h : hits) EXPECT_EQ(h.prim, 2);
+}
+
+TEST_F(Conformance, RayStartingOnAVoxelFaceAndInsideTheGrid) {
+  std::vector<GrTriangle> tris = {tri({0, 0, 0}, {4, 0, 0}, {0, 4, 0}, 0),
+                                  tri({0, 0, 4}, {4, 0, 4}, {0, 4, 4}, 1),
+                                  tri({0, 0, 0}, {0, 4, 0}, {0, 0, 4}, 2)};
+  Bounds b = boundsOf(tris);
+  std::vector<GrRay> rays;
+  for (float z : {1.0f, 2.0f, 3.0f}) {  // on voxel faces of the 4x4x4 grid
+    rays.push_back(ray({1, 1, z}, {0, 0, -1}));
+    rays.push_back(ray({1, 1, z}, {0, 0, 1}));
+    rays.push_back(ray({1, 1, z}, {-1, 0.1f, 0.1f}));
+  }
+  rays.push_back(ray({0.5f, 0.5f, 0.5f}, {-1, -1, -1}));  // inside, towards the corner
+  expectAllAgree(tris, b, rays, {dims(4, 4, 4), dims(3, 3, 3)}, "face");
+}
+
+TEST_F(Conformance, EveryTriangleInOneVoxel) {
+  std::vector<GrTriangle> tris;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.0f, 0.1f);
+  for (int k = 0; k < 200; ++k)
+    tris.push_back(tri({u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)},
+                       {u(rng), u(rng), u(rng)}, k));
+  // Pin the box far away so that the cluster sits inside one voxel of a 4x4x4 grid.
+  tris.push_back(tri({10, 10, 10}, {10.01f, 10, 10}, {10, 10.01f, 10}, 200));
+  Bounds b = boundsOf(tris);
+  UniformGrid grid = buildUniformGrid(tris, b, dims(4, 4, 4));
+  EXPECT_EQ(grid.peCount(), 2);
+  std::vector<GrRay> rays = randomRays(Bounds{glm::vec3(0), glm::vec3(0.1f)}, 2000, 5);
+  expectAllAgree(tris, b, rays, {dims(4, 4, 4)}, "cluster");
+}
+
+TEST_F(Conformance, EmptyGridMissesEverything) {
+  std::vector<GrTriangle> tris;
+  Bounds b{glm::vec3(0), glm::vec3(1)};
+  UniformGrid grid = buildUniformGrid(tris, b, dims(3, 3, 3));
+  EXPECT_EQ(grid.peCount(), 0);
+  GridRtIntersector gridrt(*runtime_, grid, false);
+  DdaIntersector dda(*runtime_, grid);
+  std::vector<GrRay> rays = randomRays(b, 100, 9);
+  std::vector<GrHit> hits;
+  gridrt.intersect(rays, HitMode::Closest, hits, nullptr);
+  for (const auto& h : hits) EXPECT_LT(h.prim, 0);
+  dda.intersect(rays, HitMode::Closest, hits, nullptr);
+  for (const auto& h : hits) EXPECT_LT(h.prim, 0);
+}
+
+TEST_F(Conformance, RaysParallelToEachAxis) {
+  Scene scene = makeDefaultScene();
+  auto tris = prepareTriangles(scene);
+  Bounds b = sceneBounds(scene);
+  std::vector<GrRay> rays;
+  glm::vec3 c = b.center(), e = b.extent();
+  for (int axis = 0; axis < 3; ++axis)
+    for (float sign : {1.0f, -1.0f})
+      for (int k = 0; k < 100; ++k) {
+        glm::vec3 o = c + (glm::vec3(k % 10, k / 10, (k * 7) % 10) / 9.0f - 0.5f) * e * 0.9f;
+        glm::vec3 d(-0.0f);
+        d[axis] = sign;
+        rays.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, kInf});
+      }
+  expectAllAgree(tris, b, rays, standardGrids(b, tris.size()), "axis");
+}
+
+}  // namespace
+}  // namespace gridrt

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Sets GridRT up on a Debian machine: installs the Debian packages that are missing
+# (as root, or through sudo; otherwise prints the exact command to run), then configures
+# a Release build in build/ and builds the renderer, tools and tests.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PACKAGES=(
+  cmake make g++ pkg-config
+  pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
+  libglm-dev libopenimageio-dev openimageio-tools libtinygltf-dev
+  libgtest-dev libcli11-dev nlohmann-json3-dev
+  python3 python3-venv
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -gt 0 ]; then
+  install_cmd="apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends ${missing[*]}"
+  if [ "$(id -u)" -eq 0 ]; then
+    echo "setup: installing ${missing[*]}"
+    sh -c "$install_cmd"
+  elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+    echo "setup: installing ${missing[*]} (sudo)"
+    sudo sh -c "$install_cmd"
+  else
+    echo "setup: missing Debian packages; run as root:" >&2
+    echo "  $install_cmd" >&2
+    exit 1
+  fi
+fi
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j"$(nproc)"
+echo "setup: build ready in build/ (executable build/gridrt)"
