@@ -118,8 +118,9 @@ constexpr int kSphereSegments = 48;
 constexpr int kSphereRings = 24;
 
 // Irradiance (lux) the point light gives the floor right below it. With Lambert shading
-// (albedo / pi) the white floor there has radiance 0.75 * 4 / pi ~ 0.95.
-constexpr float kFloorIrradiance = 4.0f;
+// (albedo / pi) the white floor there has radiance 0.75 * 3 / pi ~ 0.72, leaving headroom
+// for the ceiling close above the light and the Phong highlights.
+constexpr float kFloorIrradiance = 3.0f;
 
 }  // namespace
 
@@ -151,7 +152,7 @@ Scene makeDefaultScene() {
 
   Light light;
   light.type = LightType::Point;
-  light.position = {0.0f, 0.95f * h, -d / 2};
+  light.position = {0.0f, 0.85f * h, -d / 2};
   light.intensity = kFloorIrradiance * light.position.y * light.position.y;  // E * r^2
   scene.lights.push_back(light);
   scene.has_lights = true;

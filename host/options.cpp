@@ -105,7 +105,8 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.add_flag("--primary-only", o.primary_only,
                "primary rays only, headlight shading (the paper's measurement)");
   app.add_option("--aov", raw.aovs,
-                 "NAME=FILE (repeatable; .exr): depth, primid, normal, tests, pe, listlen");
+                 "NAME=FILE (repeatable; .exr): depth, primid, normal, tests, pe, listlen")
+      ->allow_extra_args(false);  // one value per --aov, so a scene path may follow
   app.add_option("--repeat", o.repeat, "render N more frames after the first, for timing")
       ->capture_default_str()->check(CLI::Range(0, 100000));
   app.add_option("--stats-json", o.stats_json, "write statistics as JSON to FILE");
