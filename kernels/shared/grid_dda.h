@@ -4,9 +4,10 @@
  * Robustness choices:
  *  - a zero direction component (+0.0 or -0.0) gets step 0 and an infinite boundary
  *    distance, set explicitly, so no 0*inf NaN is ever formed;
- *  - the distance to the next boundary plane is computed from the voxel index each step
- *    (min + k*cell), never accumulated, so consecutive voxels share the same boundary value
- *    exactly: every t of the ray belongs to a voxel interval, none falls between two;
+ *  - the distance to the next boundary plane of an axis is computed from the voxel index
+ *    (min + k*cell) when the traversal steps along that axis, never accumulated, and
+ *    consecutive voxels share the same boundary value exactly: every t of the ray belongs
+ *    to a voxel interval, none falls between two;
  *  - when boundaries tie (the ray passes through an edge or a corner) one axis is stepped
  *    at a time, so the voxels in between appear with a zero-length interval;
  *  - a ray with a non-finite component misses the grid. */
@@ -32,6 +33,7 @@ typedef struct {
   float t_end;           /* where the traversal stops: min(ray tmax, grid exit) */
   float ox, oy, oz;
   float idx, idy, idz; /* 1/direction, unused on a zero axis */
+  float tnx, tny, tnz; /* distance to the current voxel's far boundary on each axis */
 } GrDda;
 
 GR_FN int gr_clampi(int v, int lo, int hi) { return v < lo ? lo : (v > hi ? hi : v); }
@@ -59,12 +61,9 @@ GR_FN float gr_next_boundary(float grid_min, float cell, int i, int step, float 
   return (grid_min + (float)k * cell - o) * inv;
 }
 
-GR_FN void gr_dda_update_exit(const GrGridInfo* g, GrDda* s) {
-  float tx = gr_next_boundary(g->minx, g->cellx, s->ix, s->sx, s->ox, s->idx);
-  float ty = gr_next_boundary(g->miny, g->celly, s->iy, s->sy, s->oy, s->idy);
-  float tz = gr_next_boundary(g->minz, g->cellz, s->iz, s->sz, s->oz, s->idz);
-  float t = tx < ty ? tx : ty;
-  t = t < tz ? t : tz;
+GR_FN void gr_dda_update_exit(GrDda* s) {
+  float t = s->tnx < s->tny ? s->tnx : s->tny;
+  t = t < s->tnz ? t : s->tnz;
   t = t < s->t_end ? t : s->t_end;
   s->t_exit = t > s->t_enter ? t : s->t_enter;
 }
@@ -104,29 +103,32 @@ GR_FN int gr_dda_begin(const GrGridInfo* g, float ox, float oy, float oz, float 
   s->iz = gr_clampi((int)floor((pz - g->minz) / g->cellz), 0, g->nz - 1);
   s->t_enter = t0;
   s->t_end = t1;
-  gr_dda_update_exit(g, s);
+  s->tnx = gr_next_boundary(g->minx, g->cellx, s->ix, s->sx, ox, s->idx);
+  s->tny = gr_next_boundary(g->miny, g->celly, s->iy, s->sy, oy, s->idy);
+  s->tnz = gr_next_boundary(g->minz, g->cellz, s->iz, s->sz, oz, s->idz);
+  gr_dda_update_exit(s);
   return 1;
 }
 
 /* Moves to the next voxel along the ray. Returns 0 when the traversal is over. */
 GR_FN int gr_dda_step(const GrGridInfo* g, GrDda* s) {
   if (s->t_exit >= s->t_end) return 0;
-  float tx = gr_next_boundary(g->minx, g->cellx, s->ix, s->sx, s->ox, s->idx);
-  float ty = gr_next_boundary(g->miny, g->celly, s->iy, s->sy, s->oy, s->idy);
-  float tz = gr_next_boundary(g->minz, g->cellz, s->iz, s->sz, s->oz, s->idz);
   /* Step exactly one axis: the nearest boundary, x before y before z on ties. */
-  if (tx <= ty && tx <= tz) {
+  if (s->tnx <= s->tny && s->tnx <= s->tnz) {
     s->ix += s->sx;
     if (s->ix < 0 || s->ix >= g->nx) return 0;
-  } else if (ty <= tz) {
+    s->tnx = gr_next_boundary(g->minx, g->cellx, s->ix, s->sx, s->ox, s->idx);
+  } else if (s->tny <= s->tnz) {
     s->iy += s->sy;
     if (s->iy < 0 || s->iy >= g->ny) return 0;
+    s->tny = gr_next_boundary(g->miny, g->celly, s->iy, s->sy, s->oy, s->idy);
   } else {
     s->iz += s->sz;
     if (s->iz < 0 || s->iz >= g->nz) return 0;
+    s->tnz = gr_next_boundary(g->minz, g->cellz, s->iz, s->sz, s->oz, s->idz);
   }
   s->t_enter = s->t_exit;
-  gr_dda_update_exit(g, s);
+  gr_dda_update_exit(s);
   return 1;
 }
 

@@ -1,0 +1,228 @@
+// Image regression: the built-in default scene rendered at 160x120 by build/gridrt must match
+// the stored reference scenes/reference/default_160x120.exr (linear float RGB).
+//
+// Regenerate the reference (only after an intended change to the scene, camera, shading or
+// output, and after looking at a PNG render of it) from the repository root with:
+//
+//   build/gridrt --width 160 --height 120 -o scenes/reference/default_160x120.exr -q
+//
+// (see scenes/reference/README.md). On a mismatch the test writes the absolute difference,
+// scaled x10, as a PNG and names it in the failure message.
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "test_support.h"
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+using gridrt::test::gridrtBinary;
+using gridrt::test::sourcePath;
+using gridrt::test::tempPath;
+
+namespace {
+
+constexpr int kWidth = 160, kHeight = 120;
+
+// Tolerance: a channel may differ by up to 0.02 (linear), and at most 0.1% of the pixels
+// (19 of 19200) may exceed that, because float rounding across machines and vector widths
+// can flip a handful of silhouette/edge pixels (the host double-precision reference
+// intersector differs from the device in 7 such pixels).
+constexpr float kFailThreshold = 0.02f;
+constexpr float kWarnThreshold = 0.005f;
+constexpr double kMaxFailingFraction = 0.001;
+
+std::string referencePath() { return sourcePath("scenes/reference/default_160x120.exr"); }
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// Runs build/gridrt with `args` (no shell); returns its exit code (-1 if it did not exit
+// normally) and its stderr.
+int runGridrt(const std::vector<std::string>& args, std::string& err) {
+  const std::string err_path = tempPath("regression_stderr");
+  const std::string binary = gridrtBinary();
+  std::vector<char*> argv{const_cast<char*>(binary.c_str())};
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                   0644);
+  pid_t pid = 0;
+  int rc = posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) {
+    err = "posix_spawn failed: " + std::string(std::strerror(rc));
+    return -1;
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  err = readFile(err_path);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Renders the default scene once per test process and returns the EXR's path.
+const std::string& renderDefault() {
+  static std::string path;
+  static std::string failure;
+  if (path.empty() && failure.empty()) {
+    std::string out = tempPath("default_160x120.exr");
+    std::string err;
+    int rc = runGridrt({"--width", std::to_string(kWidth), "--height", std::to_string(kHeight),
+                        "-o", out, "-q"},
+                       err);
+    if (rc == 0 && fs::exists(out))
+      path = out;
+    else
+      failure = "gridrt exited " + std::to_string(rc) + ": " + err;
+  }
+  if (path.empty()) ADD_FAILURE() << "rendering the default scene failed: " << failure;
+  return path;
+}
+
+// Loads an image as float; fails the test (and returns false) if that is impossible.
+bool load(const std::string& path, OIIO::ImageBuf& buf) {
+  buf = OIIO::ImageBuf(path);
+  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
+    ADD_FAILURE() << "cannot read '" << path << "': " << buf.geterror();
+    return false;
+  }
+  return true;
+}
+
+struct RegionMean {
+  double r = 0, g = 0, b = 0;
+};
+
+RegionMean regionMean(const OIIO::ImageBuf& buf, int x0, int x1, int y0, int y1) {
+  RegionMean m;
+  int n = 0;
+  float px[3];
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x, ++n) {
+      buf.getpixel(x, y, px, 3);
+      m.r += px[0], m.g += px[1], m.b += px[2];
+    }
+  m.r /= n, m.g /= n, m.b /= n;
+  return m;
+}
+
+// Guards against a vacuous pass (a black, uniform or broken image as the reference): the
+// image is reasonably bright and varied, without NaN/Inf, the left wall is red and the right
+// wall green.
+void expectLooksLikeDefaultScene(const OIIO::ImageBuf& buf, const std::string& what) {
+  SCOPED_TRACE(what);
+  const OIIO::ImageSpec& spec = buf.spec();
+  ASSERT_EQ(spec.width, kWidth);
+  ASSERT_EQ(spec.height, kHeight);
+  ASSERT_GE(spec.nchannels, 3);
+
+  auto stats = OIIO::ImageBufAlgo::computePixelStats(buf);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(stats.nancount[c], 0u) << "channel " << c;
+    EXPECT_EQ(stats.infcount[c], 0u) << "channel " << c;
+    EXPECT_GT(stats.avg[c], 0.1f) << "channel " << c << " mean is too dark";
+    EXPECT_GT(stats.stddev[c], 0.05f) << "channel " << c << " is (nearly) uniform";
+    EXPECT_GE(stats.min[c], 0.0f) << "channel " << c;
+  }
+
+  // Wall patches at mid height, clear of the spheres, the block and its shadow.
+  RegionMean left = regionMean(buf, 4, 30, 30, 90);
+  RegionMean right = regionMean(buf, 132, 156, 30, 90);
+  EXPECT_GT(left.r, 0.1) << "left wall is dark";
+  EXPECT_GT(right.g, 0.1) << "right wall is dark";
+  EXPECT_GT(left.r, 2.0 * left.g) << "left wall is not red (r " << left.r << ", g " << left.g << ")";
+  EXPECT_GT(right.g, 2.0 * right.r) << "right wall is not green (r " << right.r << ", g "
+                                    << right.g << ")";
+  EXPECT_GT(left.r, right.r) << "left wall should be redder than the right wall";
+  EXPECT_GT(right.g, left.g) << "right wall should be greener than the left wall";
+}
+
+TEST(ImageRegression, ReferenceLooksLikeTheDefaultScene) {
+  ASSERT_TRUE(fs::exists(referencePath()))
+      << referencePath() << " is missing; regenerate it as described in "
+      << "scenes/reference/README.md";
+  OIIO::ImageBuf ref;
+  ASSERT_TRUE(load(referencePath(), ref));
+  expectLooksLikeDefaultScene(ref, "reference " + referencePath());
+}
+
+TEST(ImageRegression, RenderLooksLikeTheDefaultScene) {
+  const std::string& out = renderDefault();
+  ASSERT_FALSE(out.empty());
+  OIIO::ImageBuf img;
+  ASSERT_TRUE(load(out, img));
+  expectLooksLikeDefaultScene(img, "render " + out);
+}
+
+TEST(ImageRegression, DefaultSceneMatchesReference) {
+  ASSERT_TRUE(fs::exists(referencePath()))
+      << referencePath() << " is missing; regenerate it as described in "
+      << "scenes/reference/README.md";
+  const std::string& out = renderDefault();
+  ASSERT_FALSE(out.empty());
+  OIIO::ImageBuf img, ref;
+  ASSERT_TRUE(load(out, img));
+  ASSERT_TRUE(load(referencePath(), ref));
+  ASSERT_EQ(img.spec().width, ref.spec().width);
+  ASSERT_EQ(img.spec().height, ref.spec().height);
+  ASSERT_EQ(img.spec().nchannels, ref.spec().nchannels);
+
+  auto result = OIIO::ImageBufAlgo::compare(img, ref, kFailThreshold, kWarnThreshold);
+  // result.error is also set by this OpenImageIO whenever a pixel fails, so only an image
+  // error counts as a failed comparison; the failing pixels are judged below.
+  ASSERT_FALSE(img.has_error() || ref.has_error())
+      << "compare failed: " << img.geterror() << ref.geterror();
+  const double pixels = double(kWidth) * kHeight;
+  const double failing = double(result.nfail) / pixels;
+  if (failing <= kMaxFailingFraction) {
+    SUCCEED();
+    return;
+  }
+
+  // Write |render - reference| x 10 for a look, next to the render.
+  std::string diff_path = tempPath("default_diff.png");
+  OIIO::ImageBuf diff = OIIO::ImageBufAlgo::absdiff(img, ref);
+  diff = OIIO::ImageBufAlgo::mul(diff, 10.0f);
+  diff = OIIO::ImageBufAlgo::clamp(diff, 0.0f, 1.0f);
+  bool wrote = diff.write(diff_path, OIIO::TypeDesc::UINT8);
+  ADD_FAILURE() << result.nfail << " pixels (" << 100.0 * failing << "%) differ by more than "
+                << kFailThreshold << " (allowed " << 100.0 * kMaxFailingFraction
+                << "%); max error " << result.maxerror << " at (" << result.maxx << ", "
+                << result.maxy << ", channel " << result.maxc << "), mean error "
+                << result.meanerror << "\n  render:    " << out
+                << "\n  reference: " << referencePath() << "\n  diff x10:  "
+                << (wrote ? diff_path : "(could not write " + diff_path + ": " + diff.geterror() + ")");
+}
+
+// Removes this process's temp directory when every test passed; on a failure it stays,
+// with the render and the diff image the failure message names.
+class TempDirCleanup : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    if (!::testing::UnitTest::GetInstance()->Passed()) return;
+    std::error_code ignored;
+    fs::remove_all(fs::path(tempPath("cleanup")).parent_path(), ignored);
+  }
+};
+const auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new TempDirCleanup);
+
+}  // namespace
