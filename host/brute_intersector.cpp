@@ -9,9 +9,10 @@ constexpr int kLanes = 16;      // rays per work-item (float16)
 constexpr int kLocalSize = 8;   // work-items per work-group: fixed, so PoCL compiles once
 }  // namespace
 
-BruteIntersector::BruteIntersector(ClRuntime& runtime, const std::vector<GrTriangle>& triangles)
+BruteIntersector::BruteIntersector(ClRuntime& runtime, const std::vector<GrTriangle>& triangles,
+                   const KernelOptions& kernel_options)
     : rt_(runtime), triangle_count_(int(triangles.size())) {
-  kernel_ = cl::Kernel(rt_.program("brute.cl"), "brute_intersect");
+  kernel_ = cl::Kernel(rt_.program("brute.cl", kernel_options.defines()), "brute_intersect");
   triangles_.upload(rt_, triangles);
 }
 

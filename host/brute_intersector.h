@@ -9,7 +9,8 @@ namespace gridrt {
 
 class BruteIntersector : public Intersector {
  public:
-  BruteIntersector(ClRuntime& runtime, const std::vector<GrTriangle>& triangles);
+  BruteIntersector(ClRuntime& runtime, const std::vector<GrTriangle>& triangles,
+                   const KernelOptions& kernel_options = {});
   std::string name() const override { return "brute"; }
   void intersect(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                  RayDiagnostics* diagnostics) override;

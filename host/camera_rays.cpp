@@ -28,25 +28,35 @@ Camera lookAtCamera(const glm::vec3& eye, const glm::vec3& target, float yfov) {
   return c;
 }
 
-GrRay cameraRay(const Camera& camera, int width, int height, int i, int j, float sx, float sy) {
-  float aspect = camera.aspect > 0.0f ? camera.aspect : float(width) / float(height);
-  float x = 2.0f * (float(i) + sx) / float(width) - 1.0f;
-  float y = 1.0f - 2.0f * (float(j) + sy) / float(height);
+CameraRayGenerator::CameraRayGenerator(const Camera& camera, int width, int height)
+    : camera_(camera),
+      width_(float(width)),
+      height_(float(height)),
+      aspect_(camera.aspect > 0.0f ? camera.aspect : float(width) / float(height)),
+      tan_half_(std::tan(camera.yfov * 0.5f)),
+      origin_(camera.world[3]) {}
+
+GrRay CameraRayGenerator::operator()(int i, int j, float sx, float sy) const {
+  float x = 2.0f * (float(i) + sx) / width_ - 1.0f;
+  float y = 1.0f - 2.0f * (float(j) + sy) / height_;
   glm::vec3 origin, direction;
-  if (camera.orthographic) {
-    // xmag/ymag are half extents; the image aspect wins over xmag when they disagree.
-    glm::vec4 o = camera.world * glm::vec4(x * camera.ymag * aspect, y * camera.ymag, 0.0f, 1.0f);
+  if (camera_.orthographic) {
+    // ymag is the half height; the image aspect sets the half width.
+    glm::vec4 o = camera_.world * glm::vec4(x * camera_.ymag * aspect_, y * camera_.ymag, 0.0f, 1.0f);
     origin = glm::vec3(o);
-    direction = glm::vec3(camera.world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
+    direction = glm::vec3(camera_.world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
   } else {
-    float tan_half = std::tan(camera.yfov * 0.5f);
-    glm::vec3 d(x * tan_half * aspect, y * tan_half, -1.0f);
-    origin = glm::vec3(camera.world[3]);
-    direction = glm::vec3(camera.world * glm::vec4(glm::normalize(d), 0.0f));
+    glm::vec3 d(x * tan_half_ * aspect_, y * tan_half_, -1.0f);
+    origin = origin_;
+    direction = glm::vec3(camera_.world * glm::vec4(glm::normalize(d), 0.0f));
   }
   direction = glm::normalize(direction);
   return GrRay{origin.x, origin.y, origin.z, 0.0f, direction.x, direction.y, direction.z,
                std::numeric_limits<float>::infinity()};
+}
+
+GrRay cameraRay(const Camera& camera, int width, int height, int i, int j, float sx, float sy) {
+  return CameraRayGenerator(camera, width, height)(i, j, sx, sy);
 }
 
 void jitter(uint32_t pixel, uint32_t sample, float& sx, float& sy) {

@@ -19,7 +19,20 @@ Camera defaultCamera(const Bounds& bounds);
 // Eye-to-target camera override (gridrt --look-at), +Y up.
 Camera lookAtCamera(const glm::vec3& eye, const glm::vec3& target, float yfov);
 
-// The ray through pixel (i, j) at sub-pixel offset (sx, sy) in [0,1) (0.5,0.5 = centre).
+// Primary rays of one camera and image size, with the per-image constants computed once.
+class CameraRayGenerator {
+ public:
+  CameraRayGenerator(const Camera& camera, int width, int height);
+  // The ray through pixel (i, j) at sub-pixel offset (sx, sy) in [0,1) (0.5,0.5 = centre).
+  GrRay operator()(int i, int j, float sx, float sy) const;
+
+ private:
+  const Camera& camera_;
+  float width_, height_, aspect_, tan_half_;
+  glm::vec3 origin_;
+};
+
+// One ray, for callers that need a few (same result as CameraRayGenerator).
 GrRay cameraRay(const Camera& camera, int width, int height, int i, int j, float sx, float sy);
 
 // A deterministic sub-pixel offset for sample `s` of pixel `pixel` (spp > 1 jitter).

@@ -97,6 +97,8 @@ std::string formatDeviceTable(const std::vector<DeviceInfo>& devices) {
   return os.str();
 }
 
+// A header that is not embedded keeps its #include line: harmless inside a disabled #ifdef,
+// and reported by the OpenCL compiler if it is really needed.
 std::string assembleKernelSource(const std::string& file) {
   const char* text = embeddedKernelSource(file);
   if (!text) throw RenderError("kernel source '" + file + "' is not embedded in this build");
@@ -108,7 +110,8 @@ std::string assembleKernelSource(const std::string& file) {
   while (std::getline(in, line)) {
     ++line_number;
     std::smatch m;
-    if (std::regex_match(line, m, include_line)) {
+    if (std::regex_match(line, m, include_line) &&
+        embeddedKernelSource("shared/" + m[1].str())) {
       // Headers are guarded, so including one twice is harmless. The generated source
       // starts with '#line 1', so the line after the include is line_number here.
       out << assembleKernelSource("shared/" + m[1].str()) << "\n#line " << line_number
@@ -132,12 +135,17 @@ ClRuntime::ClRuntime(const std::string& spec) {
   if (spec.empty()) {
     chosen = &devices.front();
   } else {
-    static const std::regex index_form(R"(^(\d+):(\d+)$)");
+    // At most 9 digits, so stoi cannot overflow: a huge index is just an unknown device.
+    static const std::regex index_form(R"(^(\d{1,9}):(\d{1,9})$)");
+    static const std::regex overall_form(R"(^\d{1,9}$)");  // N: the Nth device of the table
     std::smatch m;
     if (std::regex_match(spec, m, index_form)) {
       int p = std::stoi(m[1]), d = std::stoi(m[2]);
       for (const auto& info : devices)
         if (info.platform_index == p && info.device_index == d) chosen = &info;
+    } else if (std::regex_match(spec, overall_form)) {
+      size_t n = std::stoul(spec);
+      if (n < devices.size()) chosen = &devices[n];
     } else {
       for (const auto& info : devices)
         if (!chosen && lower(info.name).find(lower(spec)) != std::string::npos) chosen = &info;

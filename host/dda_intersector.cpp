@@ -9,9 +9,10 @@ namespace {
 constexpr int kLocalSize = 64;  // work-items per work-group: fixed, so PoCL compiles once
 }
 
-DdaIntersector::DdaIntersector(ClRuntime& runtime, const UniformGrid& grid)
+DdaIntersector::DdaIntersector(ClRuntime& runtime, const UniformGrid& grid,
+                   const KernelOptions& kernel_options)
     : rt_(runtime), grid_(grid) {
-  kernel_ = cl::Kernel(rt_.program("dda.cl"), "dda_intersect");
+  kernel_ = cl::Kernel(rt_.program("dda.cl", kernel_options.defines()), "dda_intersect");
   pe_of_voxel_.upload(rt_, grid.pe_of_voxel);
   pe_tri_begin_.upload(rt_, grid.pe_tri_begin);
   pe_triangles_.upload(rt_, grid.pe_triangles);

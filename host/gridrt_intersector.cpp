@@ -10,10 +10,12 @@ namespace {
 constexpr int kSkipped = -2;  // prim of a slot the interrupt skipped (kernels/gridrt_pe.cl)
 }
 
-GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid, bool interrupt)
+GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid, bool interrupt,
+                                     const KernelOptions& kernel_options)
     : rt_(runtime), grid_(grid), interrupt_(interrupt) {
   kernel_ = cl::Kernel(rt_.program("gridrt_pe.cl", "-DGR_PE_LOCAL_SIZE=" +
-                                                        std::to_string(kPeLocalSize)),
+                                                        std::to_string(kPeLocalSize) + " " +
+                                                        kernel_options.defines()),
                        "gridrt_pe");
   pe_tri_begin_.upload(rt_, grid.pe_tri_begin);
   pe_triangles_.upload(rt_, grid.pe_triangles);

@@ -21,7 +21,8 @@ class GridRtIntersector : public Intersector {
  public:
   // interrupt: emulate the paper's interrupt chain on the device (a PE skips a ray once
   // an earlier PE of the ray's list has a hit).
-  GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid, bool interrupt);
+  GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid, bool interrupt,
+                    const KernelOptions& kernel_options = {});
   std::string name() const override { return interrupt_ ? "gridrt-interrupt" : "gridrt"; }
   void intersect(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                  RayDiagnostics* diagnostics) override;

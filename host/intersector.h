@@ -12,6 +12,12 @@ namespace gridrt {
 
 enum class HitMode { Closest, AnyHit };
 
+// Build-time choices of the device kernels.
+struct KernelOptions {
+  bool watertight = false;  // Woop-Benthin-Wald watertight test instead of Moeller-Trumbore
+  std::string defines() const { return watertight ? "-DGR_WATERTIGHT" : ""; }
+};
+
 // Work and time counted over all batches since the last reset.
 struct IntersectCounters {
   uint64_t rays = 0;

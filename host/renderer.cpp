@@ -91,18 +91,25 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
   frame.rays = RayCounts{};
   frame.times = FrameTimes{};
   radiance_.assign(pixels, glm::vec3(0.0f));
+  PixelWindow win = settings_.crop.whole() ? PixelWindow{0, 0, w, h} : settings_.crop;
+  window_pixels_.clear();
+  for (int y = win.y0; y < win.y1; ++y)
+    for (int x = win.x0; x < win.x1; ++x) window_pixels_.push_back(y * w + x);
+  const size_t rendered = window_pixels_.size();
 
   // Primary rays: pixel-major, spp samples each (the pixel centre when spp == 1).
-  rays_.resize(pixels * spp);
-  paths_.resize(pixels * spp);
+  rays_.resize(rendered * spp);
+  paths_.resize(rendered * spp);
+  const CameraRayGenerator camera_rays(camera_, w, h);
 #pragma omp parallel for schedule(static)
-  for (long long p = 0; p < (long long)pixels; ++p) {
+  for (long long k = 0; k < (long long)rendered; ++k) {
+    int p = window_pixels_[k];
     for (int s = 0; s < spp; ++s) {
       float sx = 0.5f, sy = 0.5f;
       if (spp > 1) jitter(uint32_t(p), uint32_t(s), sx, sy);
-      size_t k = size_t(p) * spp + s;
-      rays_[k] = cameraRay(camera_, w, h, int(p % w), int(p / w), sx, sy);
-      paths_[k] = PathRay{int(p), glm::vec3(1.0f / float(spp)), RayKind::Primary};
+      size_t r = size_t(k) * spp + s;
+      rays_[r] = camera_rays(p % w, p / w, sx, sy);
+      paths_[r] = PathRay{p, glm::vec3(1.0f / float(spp)), RayKind::Primary};
     }
   }
   frame.times.generate_ms = clock.ms();
@@ -119,29 +126,7 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     traceBatched(rays_, HitMode::Closest, hits_,
                  first && settings_.want_diagnostics ? &diagnostics : nullptr,
                  frame.times.intersect_ms);
-    if (first) {
-      auto& a = frame.aovs;
-      a.depth.assign(pixels, -1.0f);
-      a.primid.assign(pixels, -1.0f);
-      a.normal.assign(pixels * 3, 0.0f);
-      bool diag = settings_.want_diagnostics;
-      a.tests.assign(diag ? pixels : 0, 0.0f);
-      a.pe.assign(diag ? pixels : 0, -1.0f);
-      a.list_length.assign(diag ? pixels : 0, 0.0f);
-      for (size_t p = 0; p < pixels; ++p) {
-        const GrHit& hit = hits_[p * spp];
-        if (hit.prim >= 0) {
-          a.depth[p] = hit.t;
-          a.primid[p] = float(hit.prim);
-          for (int c = 0; c < 3; ++c) a.normal[3 * p + c] = geometric_normals_[hit.prim][c];
-        }
-        if (diag) {
-          a.tests[p] = float(diagnostics.tests[p * spp]);
-          a.pe[p] = float(diagnostics.winning_pe[p * spp]);
-          a.list_length[p] = float(diagnostics.list_length[p * spp]);
-        }
-      }
-    }
+    if (first) fillPrimaryAovs(frame.aovs, diagnostics, spp);
     shadeGeneration(depth, frame);
     if (progress) progress(depth + 1, total_stages);
     if (settings_.primary_only) break;
@@ -155,21 +140,50 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
   frame.times.frame_ms = frame_clock.ms();
 }
 
+void Renderer::fillPrimaryAovs(PrimaryAovs& a, const RayDiagnostics& diagnostics, int spp) {
+  const size_t pixels = size_t(settings_.width) * settings_.height;
+  const bool diag = settings_.want_diagnostics;
+  a.depth.assign(pixels, -1.0f);
+  a.primid.assign(pixels, -1.0f);
+  a.normal.assign(pixels * 3, 0.0f);
+  a.tests.assign(diag ? pixels : 0, 0.0f);
+  a.pe.assign(diag ? pixels : 0, -1.0f);
+  a.list_length.assign(diag ? pixels : 0, 0.0f);
+  for (size_t k = 0; k < window_pixels_.size(); ++k) {
+    size_t p = size_t(window_pixels_[k]), r = k * spp;  // sample 0 of the pixel
+    const GrHit& hit = hits_[r];
+    if (hit.prim >= 0) {
+      a.depth[p] = hit.t;
+      a.primid[p] = float(hit.prim);
+      for (int c = 0; c < 3; ++c) a.normal[3 * p + c] = geometric_normals_[hit.prim][c];
+    }
+    if (diag) {
+      a.tests[p] = float(diagnostics.tests[r]);
+      a.pe[p] = float(diagnostics.winning_pe[r]);
+      a.list_length[p] = float(diagnostics.list_length[r]);
+    }
+  }
+}
+
 void Renderer::shadeGeneration(int depth, Frame& frame) {
   Stopwatch clock;
   const size_t n = rays_.size();
-  const size_t lights = lights_.size();
   const bool spawn = !settings_.primary_only && depth < settings_.max_depth;
   // Fixed slots per ray (one shadow ray per light, reflection + refraction) keep the
   // parallel loop free of shared appends; compacted afterwards in ray order.
-  ray_radiance_.assign(n, glm::vec3(0.0f));
+  ray_radiance_.resize(n);
   std::vector<glm::vec3>& local = ray_radiance_;
-  shadow_rays_.assign(n * lights, GrRay{0, 0, 0, 0, 0, 0, 0, -1.0f});
-  shadows_.assign(n * lights, ShadowRay{-1, glm::vec3(0.0f)});
-  next_rays_.assign(n * 2, GrRay{0, 0, 0, 0, 0, 0, 0, -1.0f});
-  next_paths_.assign(n * 2, PathRay{-1, glm::vec3(0.0f), RayKind::Reflection});
+  const int threads = omp_get_max_threads();
+  spawned_.resize(threads);
 
-#pragma omp parallel for schedule(dynamic, 1024)
+#pragma omp parallel num_threads(threads)
+  {
+  Spawned& out = spawned_[omp_get_thread_num()];
+  out.shadow_rays.clear();
+  out.shadows.clear();
+  out.rays.clear();
+  out.paths.clear();
+#pragma omp for schedule(static)
   for (long long i = 0; i < (long long)n; ++i) {
     const GrRay& ray = rays_[i];
     const PathRay& path = paths_[i];
@@ -205,7 +219,7 @@ void Renderer::shadeGeneration(int depth, Frame& frame) {
     SurfaceTerms terms = surfaceTerms(mat);
     local[i] = weight * (mat.emissive + settings_.ambient * terms.diffuse);
     glm::vec3 above = offsetRayOrigin(p, ng, settings_.ray_offset);
-    for (size_t l = 0; l < lights; ++l) {
+    for (size_t l = 0; l < lights_.size(); ++l) {
       glm::vec3 to_light;
       float distance;
       glm::vec3 e = lightIrradiance(lights_[l], p, to_light, distance);
@@ -218,9 +232,8 @@ void Renderer::shadeGeneration(int depth, Frame& frame) {
                              std::pow(rv, terms.phong_exponent);
       glm::vec3 contribution = weight * direct;
       if (glm::length(contribution) == 0.0f) continue;
-      size_t k = size_t(i) * lights + l;
-      shadow_rays_[k] = makeRay(above, to_light, distance);
-      shadows_[k] = ShadowRay{path.pixel, contribution};
+      out.shadow_rays.push_back(makeRay(above, to_light, distance));
+      out.shadows.push_back(ShadowRay{path.pixel, contribution});
     }
     if (!spawn) continue;
     glm::vec3 reflect_weight = terms.mirror;
@@ -230,8 +243,8 @@ void Renderer::shadeGeneration(int depth, Frame& frame) {
       glm::vec3 t_dir;
       if (f < 1.0f && refractDirection(d, n, eta, t_dir) && glm::dot(t_dir, ng) < 0.0f) {
         glm::vec3 t_weight = weight * terms.transmission * (1.0f - f) * mat.base_color;
-        next_rays_[2 * i + 1] = makeRay(offsetRayOrigin(p, -ng, settings_.ray_offset), t_dir, kInf);
-        next_paths_[2 * i + 1] = PathRay{path.pixel, t_weight, RayKind::Refraction};
+        out.rays.push_back(makeRay(offsetRayOrigin(p, -ng, settings_.ray_offset), t_dir, kInf));
+        out.paths.push_back(PathRay{path.pixel, t_weight, RayKind::Refraction});
       } else {
         f = 1.0f;  // total internal reflection
       }
@@ -240,40 +253,35 @@ void Renderer::shadeGeneration(int depth, Frame& frame) {
     if (glm::length(reflect_weight) > 0.0f) {
       glm::vec3 r = reflectDirection(d, n);
       if (glm::dot(r, ng) <= 0.0f) r = reflectDirection(d, ng);  // keep it above the surface
-      next_rays_[2 * i] = makeRay(above, r, kInf);
-      next_paths_[2 * i] = PathRay{path.pixel, weight * reflect_weight, RayKind::Reflection};
+      out.rays.push_back(makeRay(above, r, kInf));
+      out.paths.push_back(PathRay{path.pixel, weight * reflect_weight, RayKind::Reflection});
     }
+  }
   }
   for (size_t i = 0; i < n; ++i) radiance_[paths_[i].pixel] += local[i];
   frame.times.shade_ms += clock.ms();
 
   // Shadow rays: any hit before the light means the light is occluded.
-  size_t kept = 0;
-  for (size_t k = 0; k < shadows_.size(); ++k)
-    if (shadows_[k].pixel >= 0) {
-      shadow_rays_[kept] = shadow_rays_[k];
-      shadows_[kept++] = shadows_[k];
-    }
-  shadow_rays_.resize(kept);
-  shadows_.resize(kept);
-  frame.rays.shadow += kept;
-  if (kept) {
+  shadow_rays_.clear();
+  shadows_.clear();
+  for (const Spawned& out : spawned_) {
+    shadow_rays_.insert(shadow_rays_.end(), out.shadow_rays.begin(), out.shadow_rays.end());
+    shadows_.insert(shadows_.end(), out.shadows.begin(), out.shadows.end());
+  }
+  frame.rays.shadow += shadow_rays_.size();
+  if (!shadow_rays_.empty()) {
     traceBatched(shadow_rays_, HitMode::AnyHit, shadow_hits_, nullptr, frame.times.intersect_ms);
-    for (size_t k = 0; k < kept; ++k)
+    for (size_t k = 0; k < shadows_.size(); ++k)
       if (shadow_hits_[k].prim < 0) radiance_[shadows_[k].pixel] += shadows_[k].radiance;
   }
 
-  // The next generation: compact the spawned reflection/refraction rays.
-  kept = 0;
-  for (size_t k = 0; k < next_paths_.size(); ++k)
-    if (next_paths_[k].pixel >= 0) {
-      next_rays_[kept] = next_rays_[k];
-      next_paths_[kept++] = next_paths_[k];
-    }
-  next_rays_.resize(kept);
-  next_paths_.resize(kept);
-  std::swap(rays_, next_rays_);
-  std::swap(paths_, next_paths_);
+  // The next generation: the spawned reflection and refraction rays, in thread order.
+  rays_.clear();
+  paths_.clear();
+  for (const Spawned& out : spawned_) {
+    rays_.insert(rays_.end(), out.rays.begin(), out.rays.end());
+    paths_.insert(paths_.end(), out.paths.begin(), out.paths.end());
+  }
 }
 
 }  // namespace gridrt

@@ -14,6 +14,12 @@
 
 namespace gridrt {
 
+// A window of pixels [x0, x1) x [y0, y1); an empty window (x1 == 0) means the whole image.
+struct PixelWindow {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool whole() const { return x1 == 0 && y1 == 0; }
+};
+
 struct RenderSettings {
   int width = 640;
   int height = 480;
@@ -24,6 +30,7 @@ struct RenderSettings {
   float ambient = 0.05f;  // ambient radiance factor: ambient * diffuse albedo, lit or not
   RayOffset ray_offset;   // how secondary ray origins leave the surface
   bool want_diagnostics = false;  // fill tests / PE / list-length AOVs of primary rays
+  PixelWindow crop;  // render only these pixels (the film stays full size, zero outside)
 };
 
 // Rays traced per kind in one frame.
@@ -77,6 +84,7 @@ class Renderer {
   void traceBatched(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                     RayDiagnostics* diagnostics, double& ms);
   void shadeGeneration(int depth, Frame& frame);
+  void fillPrimaryAovs(PrimaryAovs& aovs, const RayDiagnostics& diagnostics, int spp);
 
   const Scene& scene_;
   Camera camera_;
@@ -86,10 +94,20 @@ class Renderer {
   std::vector<Light> lights_;                 // the scene's, or the default light
 
   // Reused between frames: the current generation, its hits, spawned rays.
-  std::vector<GrRay> rays_, next_rays_, shadow_rays_, batch_rays_;
+  // Rays one thread spawns while shading; concatenated in thread order afterwards (static
+  // scheduling gives each thread a contiguous range, so the order is deterministic).
+  struct Spawned {
+    std::vector<GrRay> shadow_rays;
+    std::vector<ShadowRay> shadows;
+    std::vector<GrRay> rays;
+    std::vector<PathRay> paths;
+  };
+  std::vector<GrRay> rays_, shadow_rays_, batch_rays_;
   std::vector<GrHit> hits_, shadow_hits_, batch_hits_;
-  std::vector<PathRay> paths_, next_paths_;
+  std::vector<PathRay> paths_;
   std::vector<ShadowRay> shadows_;
+  std::vector<Spawned> spawned_;
+  std::vector<int> window_pixels_;  // full-image index of each rendered pixel
   std::vector<glm::vec3> radiance_;  // per pixel accumulator
   std::vector<glm::vec3> ray_radiance_;  // per ray of the current generation
 };

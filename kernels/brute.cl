@@ -3,7 +3,7 @@
  * vector types but not loops across work-items: NOTES-POCL.md). */
 #pragma OPENCL FP_CONTRACT OFF
 #include "gridrt_types.h"
-#include "moller_trumbore16.h"
+#include "ray_triangle16.h"
 
 #define LANES 16
 
@@ -31,7 +31,7 @@ __kernel void brute_intersect(__global const GrRay* rays, int ray_count,
   for (int i = 0; i < tri_count; ++i) {
     GrTriangle tri = tris[i];
     float16 t, u, v;
-    int16 hit = gr_intersect_mt16(&r16, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z,
+    int16 hit = gr_intersect16(&r16, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z,
                                   tri.e2x, tri.e2y, tri.e2z, &t, &u, &v);
     hit &= (t > tmin) & (t < best_t);
     best_t = select(best_t, t, hit);

@@ -3,7 +3,7 @@
 #pragma OPENCL FP_CONTRACT OFF
 #include "gridrt_types.h"
 #include "grid_dda.h"
-#include "moller_trumbore.h"
+#include "ray_triangle.h"
 
 __kernel void dda_intersect(__global const GrRay* rays, int ray_count, GrGridInfo grid,
                             __global const int* pe_of_voxel, __global const int* pe_tri_begin,
@@ -26,7 +26,7 @@ __kernel void dda_intersect(__global const GrRay* rays, int ray_count, GrGridInf
         GrTriangle tri = pe_tris[i];
         float t, u, v;
         ++count;
-        if (gr_intersect_mt(ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, tri.v0x, tri.v0y,
+        if (gr_intersect(ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, tri.v0x, tri.v0y,
                             tri.v0z, tri.e1x, tri.e1y, tri.e1z, tri.e2x, tri.e2y, tri.e2z, &t,
                             &u, &v) &&
             t > ray.tmin && t < best.t && t >= s.t_enter && t <= s.t_exit) {

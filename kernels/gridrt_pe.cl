@@ -9,7 +9,7 @@
  * that ray's list has reported a hit (first_hit_slot holds the smallest such slot). */
 #pragma OPENCL FP_CONTRACT OFF
 #include "gridrt_types.h"
-#include "moller_trumbore16.h"
+#include "ray_triangle16.h"
 
 #define LANES 16
 #define GR_SKIPPED (-2) /* prim of a slot whose test was skipped by the interrupt */
@@ -61,7 +61,7 @@ void gridrt_pe(__global const GrPeTask* tasks, __global const GrPeEntry* entries
   for (int i = begin; i < end; ++i) {
     GrTriangle tri = pe_tris[i];
     float16 t, u, v;
-    int16 hit = gr_intersect_mt16(&r16, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z,
+    int16 hit = gr_intersect16(&r16, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z,
                                   tri.e2x, tri.e2y, tri.e2z, &t, &u, &v);
     /* The in-voxel rule: without it a triangle spanning voxels could win in a PE that
      * comes before the voxel where its hit really lies. */

@@ -10,6 +10,9 @@
  *    to a voxel interval, none falls between two;
  *  - when boundaries tie (the ray passes through an edge or a corner) one axis is stepped
  *    at a time, so the voxels in between appear with a zero-length interval;
+ *  - a subnormal direction component is flushed to zero (its reciprocal would overflow to
+ *    inf, and 0*inf at a boundary through the origin is NaN, which collapsed the walk);
+ *    devices that flush denormals already see it as zero, so host and kernel agree;
  *  - a ray with a non-finite component misses the grid. */
 #ifndef GRIDRT_GRID_DDA_H
 #define GRIDRT_GRID_DDA_H
@@ -25,6 +28,7 @@
 #define GR_INF (__builtin_inff())
 #define GR_ISFINITE(x) (__builtin_isfinite(x))
 #endif
+#define GR_FLT_MIN 1.17549435e-38f /* smallest normal float: 1/GR_FLT_MIN is finite */
 
 typedef struct {
   int ix, iy, iz;        /* current voxel */
@@ -74,6 +78,9 @@ GR_FN int gr_dda_begin(const GrGridInfo* g, float ox, float oy, float oz, float 
   if (!(GR_ISFINITE(ox) && GR_ISFINITE(oy) && GR_ISFINITE(oz) && GR_ISFINITE(dx) &&
         GR_ISFINITE(dy) && GR_ISFINITE(dz)))
     return 0;
+  if (dx > -GR_FLT_MIN && dx < GR_FLT_MIN) dx = 0.0f;
+  if (dy > -GR_FLT_MIN && dy < GR_FLT_MIN) dy = 0.0f;
+  if (dz > -GR_FLT_MIN && dz < GR_FLT_MIN) dz = 0.0f;
   float ax0, ax1, ay0, ay1, az0, az1;
   if (!gr_slab(ox, dx, g->minx, g->minx + (float)g->nx * g->cellx, &ax0, &ax1)) return 0;
   if (!gr_slab(oy, dy, g->miny, g->miny + (float)g->ny * g->celly, &ay0, &ay1)) return 0;

@@ -1,0 +1,229 @@
+#!/usr/bin/env python3
+"""GridRT benchmark harness: runs a named set of renders and writes a CSV and a PNG chart.
+
+Each figure is the median of --frames frames rendered after one warm-up frame (gridrt
+--repeat), so scene loading and kernel compilation are excluded; they are reported in
+their own columns (load_ms, compile_ms, build_ms).
+
+    .venv/bin/python tools/bench.py paper     # the paper's experiment (bunny_res4, 320x240)
+    .venv/bin/python tools/bench.py scaling   # triangles and image size
+    .venv/bin/python tools/bench.py whitted   # full Whitted frames with shadows
+    .venv/bin/python tools/bench.py all
+"""
+import argparse
+import csv
+import json
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SHARED = os.path.join(os.path.dirname(ROOT), "shared", "scenes")
+GRIDRT = os.path.join(ROOT, "build", "gridrt")
+
+# The paper's PE counts and the grids that give them (Nery et al., Tables III/IV).
+PAPER_GRIDS = [(1, "1,1,1"), (2, "2,1,1"), (4, "2,2,1"), (8, "2,2,2"), (12, "3,2,2"),
+               (18, "3,3,2"), (27, "3,3,3"), (36, "4,3,3"), (48, "4,4,3"), (64, "4,4,4"),
+               (125, "5,5,5"), (216, "6,6,6")]
+# The two figures the paper gives for this experiment (low-res bunny, 320x240, primary).
+PAPER_POINTS = [("FPGA, 8 PEs (paper)", 8, 82000.0), ("GTX 465 CUDA, 27 blocks (paper)", 27, 1320.0)]
+
+
+def run(args, frames):
+    with tempfile.TemporaryDirectory() as tmp:
+        stats = os.path.join(tmp, "stats.json")
+        cmd = [GRIDRT, *args, "--repeat", str(frames), "-q", "-o", os.path.join(tmp, "out.exr"),
+               "--stats-json", stats]
+        subprocess.run(cmd, check=True)
+        with open(stats) as f:
+            return json.load(f)
+
+
+def row(label, s, **extra):
+    r = {"label": label, "accel": s["accel"], "triangles": s["triangles"],
+         "width": s["width"], "height": s["height"], "rays": s["rays"]["total"],
+         "frame_ms": s["frame_ms"], "lists_ms": s["lists_ms"], "kernel_ms": s["kernel_ms"],
+         "reduce_ms": s["reduce_ms"], "shade_ms": s["shade_ms"],
+         "mrays_per_s": s["mrays_per_s"], "tests_per_ray": s["tests_per_ray"],
+         "load_ms": s["load_ms"], "compile_ms": s["compile_ms"], "build_ms": s["build_ms"]}
+    grid = s.get("grid")
+    if grid:
+        r.update(grid_dims="x".join(map(str, grid["dims"])), voxels=grid["voxels"], pes=grid["pes"])
+    load = s.get("pe_load")
+    if load:
+        r.update(pe_rays_mean=load["rays_mean"], pe_rays_max=load["rays_max"],
+                 pe_tests_mean=load["tests_mean"], pe_tests_max=load["tests_max"])
+    r.update(extra)
+    return r
+
+
+def write_csv(path, rows):
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        w.writerows(rows)
+
+
+def bench_paper(frames):
+    scene = os.path.join(SHARED, "bunny_res4.glb")
+    base = [scene, "--width", "320", "--height", "240", "--primary-only"]
+    rows = []
+    for accel in ["gridrt", "dda"]:
+        for pes, grid in PAPER_GRIDS + [(0, "auto")]:
+            s = run(base + ["--accel", accel, "--grid", grid], frames)
+            rows.append(row(f"{accel} {grid}", s, paper_pes=pes, grid=grid))
+            print(f"paper {accel:7s} grid {grid:6s}: {s['frame_ms']:8.2f} ms, "
+                  f"{s['tests_per_ray']:7.1f} tests/ray", flush=True)
+    s = run(base + ["--accel", "brute"], frames)
+    rows.append(row("brute", s, paper_pes=1, grid="none"))
+    print(f"paper brute: {s['frame_ms']:.2f} ms", flush=True)
+    return rows
+
+
+def chart_paper(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.5))
+    for accel, marker in [("gridrt", "o"), ("dda", "s")]:
+        pts = [(r["voxels"], r["frame_ms"], r["tests_per_ray"]) for r in rows
+               if r["accel"].startswith(accel) and r["grid"] != "auto"]
+        a.plot([p[0] for p in pts], [p[1] for p in pts], marker=marker, label=f"{accel} (this work)")
+        b.plot([p[0] for p in pts], [p[2] for p in pts], marker=marker, label=accel)
+        auto = [r for r in rows if r["accel"].startswith(accel) and r["grid"] == "auto"]
+        if auto:
+            a.scatter([auto[0]["voxels"]], [auto[0]["frame_ms"]], marker="*", s=150, zorder=5,
+                      label=f"{accel} auto ({auto[0]['grid_dims']})")
+    brute = [r for r in rows if r["accel"] == "brute"][0]
+    a.axhline(brute["frame_ms"], color="grey", ls=":", label="brute force (device)")
+    for label, pes, ms in PAPER_POINTS:
+        a.scatter([pes], [ms], marker="x", s=80, label=label)
+    a.set(xscale="log", yscale="log", xlabel="grid voxels (paper: PEs)", ylabel="frame time (ms)",
+          title="bunny_res4, 320x240, primary rays")
+    a.legend(fontsize=7)
+    b.set(xscale="log", xlabel="grid voxels", ylabel="ray-triangle tests per ray",
+          title="work per ray")
+    b.axhline(brute["tests_per_ray"], color="grey", ls=":", label="brute force")
+    b.legend(fontsize=7)
+    fig.suptitle(machine_line(), fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def bench_scaling(frames):
+    rows = []
+    scenes = ["bunny_res4.glb", "bunny_res3.glb", "bunny_res2.glb", "bunny.glb"]
+    sizes = [(320, 240), (640, 480), (1280, 960), (1920, 1080)]
+    for name in scenes:
+        for w, h in sizes:
+            s = run([os.path.join(SHARED, name), "--width", str(w), "--height", str(h),
+                     "--primary-only"], frames)
+            rows.append(row(f"{name} {w}x{h}", s, scene=name,
+                            ns_per_ray=s["frame_ms"] * 1e6 / s["rays"]["total"]))
+            print(f"scaling {name:15s} {w}x{h}: {s['frame_ms']:8.2f} ms, "
+                  f"{s['mrays_per_s']:6.2f} Mrays/s, build {s['build_ms']:.1f} ms", flush=True)
+    return rows
+
+
+def chart_scaling(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
+    sizes = sorted({(r["width"], r["height"]) for r in rows})
+    for w, h in sizes:
+        pts = sorted((r["triangles"], r["ns_per_ray"]) for r in rows if r["width"] == w)
+        axes[0].plot(*zip(*pts), marker="o", label=f"{w}x{h}")
+    axes[0].set(xscale="log", yscale="log", xlabel="triangles", ylabel="ns per ray",
+                title="time per ray vs triangles")
+    for scene in sorted({r["scene"] for r in rows}, key=lambda n: min(r["triangles"] for r in rows if r["scene"] == n)):
+        pts = sorted((r["rays"], r["ns_per_ray"]) for r in rows if r["scene"] == scene)
+        axes[1].plot(*zip(*pts), marker="o", label=scene)
+    axes[1].set(xscale="log", yscale="log", xlabel="rays per frame", ylabel="ns per ray",
+                title="time per ray vs rays")
+    per_scene = {}
+    for r in rows:
+        per_scene.setdefault(r["triangles"], []).append(r)
+    tris = sorted(per_scene)
+    axes[2].plot(tris, [min(x["build_ms"] for x in per_scene[t]) for t in tris], marker="o", label="grid build")
+    big = max(sizes)
+    axes[2].plot(tris, [next(x["lists_ms"] for x in per_scene[t] if (x["width"], x["height"]) == big) for t in tris],
+                 marker="s", label=f"traversal lists ({big[0]}x{big[1]})")
+    axes[2].set(xscale="log", yscale="log", xlabel="triangles", ylabel="ms",
+                title="grid build and list generation")
+    for a in axes:
+        a.legend(fontsize=7)
+    fig.suptitle(machine_line(), fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def bench_whitted(frames):
+    rows = []
+    for label, scene in [("default scene", []), ("bunny_res4", [os.path.join(SHARED, "bunny_res4.glb")]),
+                         ("bunny", [os.path.join(SHARED, "bunny.glb")])]:
+        s = run(scene + ["--width", "640", "--height", "480", "--max-depth", "5"], frames)
+        rows.append(row(label, s, fps=1000.0 / s["frame_ms"]))
+        print(f"whitted {label:14s}: {s['frame_ms']:8.2f} ms = {1000 / s['frame_ms']:6.1f} fps, "
+              f"{s['rays']['total']} rays", flush=True)
+    return rows
+
+
+def chart_whitted(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    phases = ["lists_ms", "kernel_ms", "reduce_ms", "shade_ms"]
+    bottom = [0.0] * len(rows)
+    for p in phases:
+        vals = [r[p] for r in rows]
+        ax.bar([r["label"] for r in rows], vals, bottom=bottom, label=p.replace("_ms", ""))
+        bottom = [b + v for b, v in zip(bottom, vals)]
+    ax.scatter([r["label"] for r in rows], [r["frame_ms"] for r in rows], color="k", zorder=5,
+               label="frame")
+    ax.set(ylabel="ms per frame (640x480, max depth 5)", title="Whitted frames: time per phase")
+    ax.legend(fontsize=8)
+    fig.suptitle(machine_line(), fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def machine_line():
+    cpu = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo") as f:
+            cpu = next(l.split(":", 1)[1].strip() for l in f if l.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    return f"{cpu}, {os.cpu_count()} cores, PoCL CPU device; medians of frames after a warm-up"
+
+
+SETS = {"paper": (bench_paper, chart_paper), "scaling": (bench_scaling, chart_scaling),
+        "whitted": (bench_whitted, chart_whitted)}
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("set", choices=list(SETS) + ["all"])
+    p.add_argument("--frames", type=int, default=7, help="timed frames per figure (median), >= 5")
+    p.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
+    a = p.parse_args()
+    if a.frames < 5:
+        p.error("--frames must be at least 5")
+    os.makedirs(a.out, exist_ok=True)
+    for name in (SETS if a.set == "all" else [a.set]):
+        bench, chart = SETS[name]
+        rows = bench(a.frames)
+        write_csv(os.path.join(a.out, f"{name}.csv"), rows)
+        chart(rows, os.path.join(a.out, f"{name}.png"))
+        print(f"wrote {a.out}/{name}.csv and {name}.png")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
