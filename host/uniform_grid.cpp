@@ -25,10 +25,14 @@ void exactVertices(const GrTriangle& t, glm::dvec3 v[3]) {
 }
 
 // The range of voxel indices on one axis whose margin-grown cell may touch [lo, hi].
-// One extra cell each side; the exact test decides.
-void axisRange(double lo, double hi, double gmin, double cell, int n, int& first, int& last) {
-  first = std::clamp(int(std::floor((lo - gmin) / cell)) - 1, 0, n - 1);
-  last = std::clamp(int(std::floor((hi - gmin) / cell)) + 1, 0, n - 1);
+// The margin can span several cells (a scene collapsed to a point or a plane has cells
+// smaller than the margin), so [lo, hi] is grown by it; one extra cell each side against
+// rounding; the exact test decides. Clamped in double so far-away triangles cannot
+// overflow the int conversion.
+void axisRange(double lo, double hi, double gmin, double cell, double m, int n, int& first,
+               int& last) {
+  first = int(std::clamp(std::floor((lo - m - gmin) / cell) - 1.0, 0.0, double(n - 1)));
+  last = int(std::clamp(std::floor((hi + m - gmin) / cell) + 1.0, 0.0, double(n - 1)));
 }
 
 }  // namespace
@@ -99,7 +103,7 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
       glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2]));
       glm::dvec3 thi = glm::max(v[0], glm::max(v[1], v[2]));
       int first[3], last[3];
-      for (int a = 0; a < 3; ++a) axisRange(tlo[a], thi[a], gmin[a], cell[a], n[a], first[a], last[a]);
+      for (int a = 0; a < 3; ++a) axisRange(tlo[a], thi[a], gmin[a], cell[a], m, n[a], first[a], last[a]);
       for (int z = first[2]; z <= last[2]; ++z)
         for (int y = first[1]; y <= last[1]; ++y)
           for (int x = first[0]; x <= last[0]; ++x) {
