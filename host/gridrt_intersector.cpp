@@ -1,6 +1,10 @@
 #include "gridrt_intersector.h"
 
+#include <omp.h>
+
+#include <algorithm>
 #include <climits>
+#include <cmath>
 
 #include "stopwatch.h"
 
@@ -23,6 +27,41 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
   tests_per_pe_.assign(grid.peCount(), 0);
 }
 
+void GridRtIntersector::runPes(const std::vector<GrRay>& rays,
+                               const std::vector<GrPeEntry>& entries,
+                               const std::vector<GrPeTask>& tasks, size_t slots, HitMode mode) {
+  slot_hits_.resize(slots);
+  if (tasks.empty()) return;
+  const size_t n = rays.size();
+  rays_.upload(rt_, rays);
+  entries_.upload(rt_, entries);
+  tasks_.upload(rt_, tasks);
+  slot_hits_dev_.reserve(rt_, slots);
+  first_hit_key_.reserve(rt_, n);
+  if (interrupt_)
+    rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, n * sizeof(int));
+  kernel_.setArg(0, tasks_.get());
+  kernel_.setArg(1, entries_.get());
+  kernel_.setArg(2, rays_.get());
+  kernel_.setArg(3, pe_tri_begin_.get());
+  kernel_.setArg(4, pe_triangles_.get());
+  kernel_.setArg(5, slot_hits_dev_.get());
+  kernel_.setArg(6, first_hit_key_.get());
+  kernel_.setArg(7, mode == HitMode::AnyHit ? 1 : 0);
+  kernel_.setArg(8, interrupt_ ? 1 : 0);
+  rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
+                                   cl::NDRange(tasks.size() * kPeLocalSize),
+                                   cl::NDRange(kPeLocalSize));
+  slot_hits_dev_.download(rt_, slot_hits_.data(), slots);
+}
+
+void GridRtIntersector::addPeLoad(const std::vector<int>& pairs_per_pe) {
+  for (int pe = 0; pe < grid_.peCount(); ++pe) {
+    rays_per_pe_[pe] += pairs_per_pe[pe];
+    tests_per_pe_[pe] += uint64_t(pairs_per_pe[pe]) * grid_.triangleCountOfPe(pe);
+  }
+}
+
 void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
                                   std::vector<GrHit>& hits, RayDiagnostics* diagnostics) {
   const size_t n = rays.size();
@@ -34,29 +73,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
 
   clock.restart();
   const size_t slots = lists_.entries.size();
-  slot_hits_.resize(slots);
-  if (!bins_.tasks.empty()) {
-    rays_.upload(rt_, rays);
-    entries_.upload(rt_, bins_.entries);
-    tasks_.upload(rt_, bins_.tasks);
-    slot_hits_dev_.reserve(rt_, slots);
-    first_hit_slot_.reserve(rt_, n);
-    if (interrupt_)
-      rt_.queue().enqueueFillBuffer(first_hit_slot_.get(), int(INT_MAX), 0, n * sizeof(int));
-    kernel_.setArg(0, tasks_.get());
-    kernel_.setArg(1, entries_.get());
-    kernel_.setArg(2, rays_.get());
-    kernel_.setArg(3, pe_tri_begin_.get());
-    kernel_.setArg(4, pe_triangles_.get());
-    kernel_.setArg(5, slot_hits_dev_.get());
-    kernel_.setArg(6, first_hit_slot_.get());
-    kernel_.setArg(7, mode == HitMode::AnyHit ? 1 : 0);
-    kernel_.setArg(8, interrupt_ ? 1 : 0);
-    rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
-                                     cl::NDRange(bins_.tasks.size() * kPeLocalSize),
-                                     cl::NDRange(kPeLocalSize));
-    slot_hits_dev_.download(rt_, slot_hits_.data(), slots);
-  }
+  runPes(rays, bins_.entries, bins_.tasks, slots, mode);
   counters_.kernel_ms += clock.ms();
 
   // Phase 2: walk each ray's list nearest first; the first PE holding a hit wins.
@@ -93,15 +110,89 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
       diagnostics->list_length[r] = lists_.lengthOf(r);
     }
   }
-  for (int pe = 0; pe < grid_.peCount(); ++pe) {
-    rays_per_pe_[pe] += bins_.pairs_per_pe[pe];
-    tests_per_pe_[pe] += uint64_t(bins_.pairs_per_pe[pe]) * grid_.triangleCountOfPe(pe);
-  }
+  addPeLoad(bins_.pairs_per_pe);
   counters_.rays += n;
   counters_.tests += tests;
   counters_.list_entries += slots;
   counters_.skipped_pairs += skipped;
   max_list_length_ = std::max(max_list_length_, longest);
+  counters_.reduce_ms += clock.ms();
+}
+
+void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vector<GrRay>& rays,
+                                         std::vector<GrHit>& hits, RayDiagnostics* diagnostics) {
+  const size_t n = rays.size();
+  hits.resize(n);
+  Stopwatch clock;
+  binCameraRaysByPe(grid_, view, rays.data(), n, kPeTaskRays, camera_bins_);
+  counters_.lists_ms += clock.ms();
+
+  clock.restart();
+  const auto& entries = camera_bins_.entries;
+  runPes(rays, entries, camera_bins_.tasks, entries.size(), HitMode::Closest);
+  counters_.kernel_ms += clock.ms();
+
+  // Phase 2: a ray's list is its pairs in order of entry distance, so the first PE
+  // holding a hit is the hit pair with the smallest t_enter (equal t_enter, which only
+  // zero-length voxels at edges and corners share, goes to the lower PE index). Each
+  // thread reduces a share of the tasks into its own per-ray best; then merged per ray.
+  clock.restart();
+  const auto& tasks = camera_bins_.tasks;
+  const int threads = omp_get_max_threads();
+  thread_best_.resize(threads);
+  uint64_t tests = 0, skipped = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : tests, skipped)
+  {
+    auto& best = thread_best_[omp_get_thread_num()];
+    best.assign(n, BestPair{INFINITY, INT_MAX, -1});
+#pragma omp for schedule(dynamic, 64)
+    for (long long k = 0; k < (long long)tasks.size(); ++k) {
+      const GrPeTask& task = tasks[k];
+      const int cost = grid_.triangleCountOfPe(task.pe);
+      for (int s = task.first_entry; s < task.first_entry + task.entry_count; ++s) {
+        const GrHit& h = slot_hits_[s];
+        if (h.prim == kSkipped) {
+          ++skipped;
+          continue;
+        }
+        tests += cost;
+        const GrPeEntry& e = entries[s];
+        BestPair& b = best[e.ray];
+        if (h.prim >= 0 && (e.t_enter < b.t_enter || (e.t_enter == b.t_enter && task.pe < b.pe)))
+          b = BestPair{e.t_enter, task.pe, s};
+      }
+    }
+  }
+  std::vector<int>* winners = diagnostics ? &diagnostics->winning_pe : nullptr;
+  if (winners) winners->assign(n, -1);
+#pragma omp parallel for schedule(static)
+  for (long long r = 0; r < (long long)n; ++r) {
+    BestPair b = thread_best_[0][r];
+    for (int t = 1; t < threads; ++t) {
+      const BestPair& c = thread_best_[t][r];
+      if (c.t_enter < b.t_enter || (c.t_enter == b.t_enter && c.pe < b.pe)) b = c;
+    }
+    hits[r] = b.slot >= 0 ? slot_hits_[b.slot] : GrHit{rays[r].tmax, -1, 0.0f, 0.0f};
+    if (winners) (*winners)[r] = b.slot >= 0 ? b.pe : -1;
+  }
+  if (diagnostics) {
+    diagnostics->tests.assign(n, 0);
+    diagnostics->list_length.assign(n, 0);
+    for (const GrPeTask& task : tasks)
+      for (int s = task.first_entry; s < task.first_entry + task.entry_count; ++s) {
+        int ray = entries[s].ray;
+        ++diagnostics->list_length[ray];
+        if (slot_hits_[s].prim != kSkipped)
+          diagnostics->tests[ray] += grid_.triangleCountOfPe(task.pe);
+      }
+    for (int length : diagnostics->list_length)
+      max_list_length_ = std::max<uint64_t>(max_list_length_, length);
+  }
+  addPeLoad(camera_bins_.pairs_per_pe);
+  counters_.rays += n;
+  counters_.tests += tests;
+  counters_.list_entries += entries.size();
+  counters_.skipped_pairs += skipped;
   counters_.reduce_ms += clock.ms();
 }
 

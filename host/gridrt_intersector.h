@@ -2,6 +2,7 @@
 // PE task on the device (phase 1: one in-voxel hit per ray and PE), and the phase-2
 // reduction on the host (the first PE in a ray's list holding a hit wins).
 #pragma once
+#include "camera_binning.h"
 #include "cl_runtime.h"
 #include "device_buffer.h"
 #include "intersector.h"
@@ -26,6 +27,10 @@ class GridRtIntersector : public Intersector {
   std::string name() const override { return interrupt_ ? "gridrt-interrupt" : "gridrt"; }
   void intersect(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                  RayDiagnostics* diagnostics) override;
+  // Primary rays binned through voxel footprints (camera_binning.h) instead of walking
+  // the 3D-DDA per ray; the same pairs, so the same hits.
+  void intersectPrimary(const PinholeView& view, const std::vector<GrRay>& rays,
+                        std::vector<GrHit>& hits, RayDiagnostics* diagnostics) override;
 
   // Rays and tests each PE received, summed over all batches (load balance).
   const std::vector<uint64_t>& raysPerPe() const { return rays_per_pe_; }
@@ -42,13 +47,26 @@ class GridRtIntersector : public Intersector {
   std::vector<GrHit> slot_hits_;
   std::vector<uint64_t> rays_per_pe_, tests_per_pe_;
   uint64_t max_list_length_ = 0;
+
+  // Phase 1: uploads the batch and runs one work-group per task; slot_hits_ gets one hit
+  // (or a miss, or GR_SKIPPED) per entry slot.
+  void runPes(const std::vector<GrRay>& rays, const std::vector<GrPeEntry>& entries,
+              const std::vector<GrPeTask>& tasks, size_t slots, HitMode mode);
+  void addPeLoad(const std::vector<int>& pairs_per_pe);
+  CameraBins camera_bins_;
+  struct BestPair {
+    float t_enter;
+    int pe;
+    int slot;
+  };
+  std::vector<std::vector<BestPair>> thread_best_;  // per thread, per ray (camera path)
   DeviceBuffer<int> pe_tri_begin_{"the PE offsets", CL_MEM_READ_ONLY};
   DeviceBuffer<GrTriangle> pe_triangles_{"the PE triangles", CL_MEM_READ_ONLY};
   DeviceBuffer<GrRay> rays_{"the ray batch", CL_MEM_READ_ONLY};
   DeviceBuffer<GrPeEntry> entries_{"the PE inputs", CL_MEM_READ_ONLY};
   DeviceBuffer<GrPeTask> tasks_{"the PE tasks", CL_MEM_READ_ONLY};
   DeviceBuffer<GrHit> slot_hits_dev_{"the per-PE hits", CL_MEM_READ_WRITE};
-  DeviceBuffer<int> first_hit_slot_{"the interrupt flags", CL_MEM_READ_WRITE};
+  DeviceBuffer<int> first_hit_key_{"the interrupt flags", CL_MEM_READ_WRITE};
 };
 
 }  // namespace gridrt

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gridrt_types.h"
+#include "pinhole_view.h"
 
 namespace gridrt {
 
@@ -43,6 +44,13 @@ class Intersector {
   // hits is resized to rays.size(). diagnostics may be null.
   virtual void intersect(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                          RayDiagnostics* diagnostics) = 0;
+  // Closest hits of primary rays from a pinhole camera (ray k = pixel k of view.window).
+  // Intersectors that can exploit the camera's structure override it.
+  virtual void intersectPrimary(const PinholeView& view, const std::vector<GrRay>& rays,
+                                std::vector<GrHit>& hits, RayDiagnostics* diagnostics) {
+    (void)view;
+    intersect(rays, HitMode::Closest, hits, diagnostics);
+  }
   IntersectCounters& counters() { return counters_; }
 
  protected:

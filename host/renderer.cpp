@@ -84,6 +84,33 @@ void Renderer::traceBatched(const std::vector<GrRay>& rays, HitMode mode,
   ms += clock.ms();
 }
 
+void Renderer::tracePrimary(const PixelWindow& window, RayDiagnostics* diagnostics, double& ms) {
+  Stopwatch clock;
+  // Bands of whole rows keep each batch a window of the image, as PinholeView requires.
+  const int w = window.width();
+  const int rows = std::max(1, int(kMaxBatchRays / size_t(w)));
+  hits_.resize(rays_.size());
+  if (diagnostics) *diagnostics = RayDiagnostics{};
+  RayDiagnostics part;
+  for (int y = window.y0; y < window.y1; y += rows) {
+    PixelWindow band{window.x0, y, window.x1, std::min(window.y1, y + rows)};
+    size_t first = size_t(y - window.y0) * w, count = size_t(band.height()) * w;
+    batch_rays_.assign(rays_.begin() + first, rays_.begin() + first + count);
+    PinholeView view = PinholeView::of(camera_, settings_.width, settings_.height, band);
+    intersector_.intersectPrimary(view, batch_rays_, batch_hits_, diagnostics ? &part : nullptr);
+    std::copy(batch_hits_.begin(), batch_hits_.end(), hits_.begin() + first);
+    if (diagnostics) {
+      auto append = [](std::vector<int>& to, const std::vector<int>& from) {
+        to.insert(to.end(), from.begin(), from.end());
+      };
+      append(diagnostics->tests, part.tests);
+      append(diagnostics->winning_pe, part.winning_pe);
+      append(diagnostics->list_length, part.list_length);
+    }
+  }
+  ms += clock.ms();
+}
+
 void Renderer::render(Frame& frame, const std::function<void(int, int)>& progress) {
   Stopwatch frame_clock, clock;
   const int w = settings_.width, h = settings_.height, spp = std::max(1, settings_.spp);
@@ -123,9 +150,11 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
       else if (path.kind == RayKind::Reflection) ++frame.rays.reflection;
       else ++frame.rays.refraction;
     }
-    traceBatched(rays_, HitMode::Closest, hits_,
-                 first && settings_.want_diagnostics ? &diagnostics : nullptr,
-                 frame.times.intersect_ms);
+    RayDiagnostics* diag = first && settings_.want_diagnostics ? &diagnostics : nullptr;
+    if (first && spp == 1 && !camera_.orthographic)
+      tracePrimary(win, diag, frame.times.intersect_ms);
+    else
+      traceBatched(rays_, HitMode::Closest, hits_, diag, frame.times.intersect_ms);
     if (first) fillPrimaryAovs(frame.aovs, diagnostics, spp);
     shadeGeneration(depth, frame);
     if (progress) progress(depth + 1, total_stages);

@@ -9,16 +9,11 @@
 
 #include "image_output.h"
 #include "intersector.h"
+#include "pixel_window.h"
 #include "scene.h"
 #include "whitted_shading.h"
 
 namespace gridrt {
-
-// A window of pixels [x0, x1) x [y0, y1); an empty window (x1 == 0) means the whole image.
-struct PixelWindow {
-  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  bool whole() const { return x1 == 0 && y1 == 0; }
-};
 
 struct RenderSettings {
   int width = 640;
@@ -83,6 +78,8 @@ class Renderer {
   };
   void traceBatched(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                     RayDiagnostics* diagnostics, double& ms);
+  // Primary rays (one per pixel of `window`, in rays_) through Intersector::intersectPrimary.
+  void tracePrimary(const PixelWindow& window, RayDiagnostics* diagnostics, double& ms);
   void shadeGeneration(int depth, Frame& frame);
   void fillPrimaryAovs(PrimaryAovs& aovs, const RayDiagnostics& diagnostics, int spp);
 

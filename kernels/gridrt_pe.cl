@@ -6,7 +6,9 @@
  * Phase 2 (first PE in list order with a hit wins) runs on the host.
  *
  * INTERRUPT emulates the paper's interrupt chain: a PE skips a ray once a PE earlier in
- * that ray's list has reported a hit (first_hit_slot holds the smallest such slot). */
+ * that ray's list has reported a hit. "Earlier" is a smaller entry distance (a list is
+ * ordered by it); first_hit_key holds the smallest t_enter of a PE with a hit, as the
+ * int bits of a non-negative float, which order like the floats (atomic_min on ints). */
 #pragma OPENCL FP_CONTRACT OFF
 #include "gridrt_types.h"
 #include "ray_triangle16.h"
@@ -18,14 +20,14 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1)))
 void gridrt_pe(__global const GrPeTask* tasks, __global const GrPeEntry* entries,
                __global const GrRay* rays, __global const int* pe_tri_begin,
                __global const GrTriangle* pe_tris, __global GrHit* slot_hits,
-               __global int* first_hit_slot, int any_hit, int interrupt) {
+               __global int* first_hit_key, int any_hit, int interrupt) {
   GrPeTask task = tasks[get_group_id(0)];
   int first = get_local_id(0) * LANES;
   if (first >= task.entry_count) return;
   int lanes = min(LANES, task.entry_count - first);
   float a_ox[LANES], a_oy[LANES], a_oz[LANES], a_dx[LANES], a_dy[LANES], a_dz[LANES];
   float a_lo[LANES], a_hi[LANES], a_t0[LANES], a_t1[LANES];
-  int a_active[LANES], a_slot[LANES], a_ray[LANES];
+  int a_active[LANES], a_slot[LANES], a_ray[LANES], a_key[LANES];
   int live = 0;
   for (int k = 0; k < LANES; ++k) {
     GrPeEntry e = entries[task.first_entry + first + min(k, lanes - 1)];
@@ -34,9 +36,9 @@ void gridrt_pe(__global const GrPeTask* tasks, __global const GrPeEntry* entries
     a_dx[k] = ray.dx; a_dy[k] = ray.dy; a_dz[k] = ray.dz;
     a_lo[k] = ray.tmin; a_hi[k] = ray.tmax;
     a_t0[k] = e.t_enter; a_t1[k] = e.t_exit;
-    a_slot[k] = e.slot; a_ray[k] = e.ray;
+    a_slot[k] = e.slot; a_ray[k] = e.ray; a_key[k] = as_int(e.t_enter);
     int active = k < lanes;
-    if (interrupt && active && first_hit_slot[e.ray] < e.slot) {
+    if (interrupt && active && first_hit_key[e.ray] < as_int(e.t_enter)) {
       active = 0;
       GrHit skipped;
       skipped.t = 0.0f; skipped.prim = GR_SKIPPED; skipped.u = 0.0f; skipped.v = 0.0f;
@@ -81,6 +83,6 @@ void gridrt_pe(__global const GrPeTask* tasks, __global const GrPeEntry* entries
     GrHit h;
     h.t = o_t[k]; h.prim = o_p[k]; h.u = o_u[k]; h.v = o_v[k];
     slot_hits[a_slot[k]] = h;
-    if (interrupt && h.prim >= 0) atomic_min(&first_hit_slot[a_ray[k]], a_slot[k]);
+    if (interrupt && h.prim >= 0) atomic_min(&first_hit_key[a_ray[k]], a_key[k]);
   }
 }

@@ -46,9 +46,11 @@ class Conformance : public ::testing::Test {
   }
 
   // Runs every grid intersector at each setting against brute force on `rays`.
+  // With `view`, the rays are a pinhole camera's and the footprint-binned primary path
+  // of GridRT (intersectPrimary) is checked too.
   void expectAllAgree(const std::vector<GrTriangle>& tris, const Bounds& bounds,
                       const std::vector<GrRay>& rays, const std::vector<GridSettings>& grids,
-                      const std::string& label) {
+                      const std::string& label, const PinholeView* view = nullptr) {
     BruteIntersector brute(*runtime_, tris);
     std::vector<GrHit> want, got;
     brute.intersect(rays, HitMode::Closest, want, nullptr);
@@ -65,6 +67,12 @@ class Conformance : public ::testing::Test {
       EXPECT_EQ(mismatches(want, got, where + " gridrt"), 0u);
       interrupt.intersect(rays, HitMode::Closest, got, nullptr);
       EXPECT_EQ(mismatches(want, got, where + " gridrt-interrupt"), 0u);
+      if (view) {
+        gridrt.intersectPrimary(*view, rays, got, nullptr);
+        EXPECT_EQ(mismatches(want, got, where + " gridrt camera path"), 0u);
+        interrupt.intersectPrimary(*view, rays, got, nullptr);
+        EXPECT_EQ(mismatches(want, got, where + " gridrt-interrupt camera path"), 0u);
+      }
       dda.intersect(rays, HitMode::Closest, got, nullptr);
       EXPECT_EQ(mismatches(want, got, where + " dda"), 0u);
       // Any-hit (shadow) mode: hit or miss must agree with the closest-hit answer.
@@ -78,8 +86,12 @@ class Conformance : public ::testing::Test {
     }
   }
 
+  static Camera cameraOf(const Scene& scene) {
+    return scene.has_camera ? scene.camera : defaultCamera(sceneBounds(scene));
+  }
+
   static std::vector<GrRay> cameraRays(const Scene& scene, int w, int h) {
-    Camera camera = scene.has_camera ? scene.camera : defaultCamera(sceneBounds(scene));
+    Camera camera = cameraOf(scene);
     std::vector<GrRay> rays;
     for (int j = 0; j < h; ++j)
       for (int i = 0; i < w; ++i) rays.push_back(cameraRay(camera, w, h, i, j, 0.5f, 0.5f));
@@ -100,7 +112,10 @@ class Conformance : public ::testing::Test {
   void checkScene(const Scene& scene, const std::string& label, int w, int h) {
     auto tris = prepareTriangles(scene);
     Bounds b = sceneBounds(scene);
-    expectAllAgree(tris, b, cameraRays(scene, w, h), standardGrids(b, tris.size()), label);
+    Camera camera = cameraOf(scene);
+    PinholeView view = PinholeView::of(camera, w, h, PixelWindow{});
+    expectAllAgree(tris, b, cameraRays(scene, w, h), standardGrids(b, tris.size()), label,
+                   camera.orthographic ? nullptr : &view);
   }
 
   std::unique_ptr<ClRuntime> runtime_;
@@ -117,7 +132,9 @@ TEST_F(Conformance, BunnyRes4AtThePapersGridsMatchesBruteOnEveryPixel) {
     grids.push_back(s);
   }
   grids.push_back(GridSettings{});
-  expectAllAgree(tris, sceneBounds(scene), cameraRays(scene, 320, 240), grids, "bunny_res4");
+  PinholeView view = PinholeView::of(scene.camera, 320, 240, PixelWindow{});
+  expectAllAgree(tris, sceneBounds(scene), cameraRays(scene, 320, 240), grids, "bunny_res4",
+                 &view);
 }
 
 class SharedScenes : public Conformance, public ::testing::WithParamInterface<const char*> {};

@@ -1,0 +1,14 @@
+// A window of pixels [x0, x1) x [y0, y1); an empty window (x1 == 0, y1 == 0) means the
+// whole image.
+#pragma once
+
+namespace gridrt {
+
+struct PixelWindow {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool whole() const { return x1 == 0 && y1 == 0; }
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+};
+
+}  // namespace gridrt
