@@ -112,35 +112,77 @@ void Renderer::tracePrimary(const PixelWindow& window, RayDiagnostics* diagnosti
 }
 
 void Renderer::render(Frame& frame, const std::function<void(int, int)>& progress) {
-  Stopwatch frame_clock, clock;
-  const int w = settings_.width, h = settings_.height, spp = std::max(1, settings_.spp);
+  Stopwatch frame_clock;
+  const int w = settings_.width, h = settings_.height;
   const size_t pixels = size_t(w) * h;
   frame.rays = RayCounts{};
   frame.times = FrameTimes{};
+  frame.refined_pixels = 0;
   radiance_.assign(pixels, glm::vec3(0.0f));
   PixelWindow win = settings_.crop.whole() ? PixelWindow{0, 0, w, h} : settings_.crop;
   window_pixels_.clear();
   for (int y = win.y0; y < win.y1; ++y)
     for (int x = win.x0; x < win.x1; ++x) window_pixels_.push_back(y * w + x);
-  const size_t rendered = window_pixels_.size();
 
-  // Primary rays: pixel-major, spp samples each (the pixel centre when spp == 1).
+  if (!settings_.adaptive_aa) {
+    const int spp = std::max(1, settings_.spp);
+    renderPass(frame, spp, 0, 1.0f / float(spp), &win, progress);
+  } else {
+    // Adaptive supersampling: the pixel centres first; then extra jittered samples only
+    // where a pixel differs from a 4-neighbour by more than the threshold.
+    renderPass(frame, 1, 0, 1.0f, &win, progress);
+    std::vector<int> refine;
+    auto differs = [&](int p, int q) {
+      glm::vec3 d = glm::abs(radiance_[p] - radiance_[q]);
+      return std::max({d.x, d.y, d.z}) > settings_.aa_threshold;
+    };
+    for (int p : window_pixels_) {
+      int x = p % w, y = p / w;
+      if ((x > win.x0 && differs(p, p - 1)) || (x + 1 < win.x1 && differs(p, p + 1)) ||
+          (y > win.y0 && differs(p, p - w)) || (y + 1 < win.y1 && differs(p, p + w)))
+        refine.push_back(p);
+    }
+    const int extra = std::max(1, settings_.aa_samples);
+    const float keep = 1.0f / float(extra + 1);
+    for (int p : refine) radiance_[p] *= keep;  // the centre becomes one of extra+1 samples
+    window_pixels_ = refine;
+    frame.refined_pixels = refine.size();
+    if (!refine.empty()) renderPass(frame, extra, 1, keep, nullptr, progress);
+  }
+
+  frame.film.width = w;
+  frame.film.height = h;
+  frame.film.rgb.resize(pixels * 3);
+  for (size_t p = 0; p < pixels; ++p)
+    for (int c = 0; c < 3; ++c) frame.film.rgb[3 * p + c] = radiance_[p][c];
+  frame.times.frame_ms = frame_clock.ms();
+}
+
+void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
+                          const PixelWindow* window, const std::function<void(int, int)>& progress) {
+  Stopwatch clock;
+  const int w = settings_.width, h = settings_.height;
+  const size_t rendered = window_pixels_.size();
+  // Primary rays: pixel-major, spp samples each (the pixel centre for a lone sample 0).
   rays_.resize(rendered * spp);
   paths_.resize(rendered * spp);
   const CameraRayGenerator camera_rays(camera_, w, h);
+  const bool centre_only = spp == 1 && first_sample == 0;
 #pragma omp parallel for schedule(static)
   for (long long k = 0; k < (long long)rendered; ++k) {
     int p = window_pixels_[k];
     for (int s = 0; s < spp; ++s) {
       float sx = 0.5f, sy = 0.5f;
-      if (spp > 1) jitter(uint32_t(p), uint32_t(s), sx, sy);
+      if (!centre_only) jitter(uint32_t(p), uint32_t(first_sample + s), sx, sy);
       size_t r = size_t(k) * spp + s;
       rays_[r] = camera_rays(p % w, p / w, sx, sy);
-      paths_[r] = PathRay{p, glm::vec3(1.0f / float(spp)), RayKind::Primary};
+      paths_[r] = PathRay{p, glm::vec3(weight), RayKind::Primary};
     }
   }
-  frame.times.generate_ms = clock.ms();
+  frame.times.generate_ms += clock.ms();
 
+  // AOVs come from the first pass (window given), sample 0 of each pixel.
+  const bool aov_pass = window != nullptr;
   RayDiagnostics diagnostics;
   int total_stages = settings_.primary_only ? 1 : settings_.max_depth + 1;
   for (int depth = 0; !rays_.empty() && depth <= settings_.max_depth; ++depth) {
@@ -150,23 +192,16 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
       else if (path.kind == RayKind::Reflection) ++frame.rays.reflection;
       else ++frame.rays.refraction;
     }
-    RayDiagnostics* diag = first && settings_.want_diagnostics ? &diagnostics : nullptr;
-    if (first && spp == 1 && !camera_.orthographic)
-      tracePrimary(win, diag, frame.times.intersect_ms);
+    RayDiagnostics* diag = first && aov_pass && settings_.want_diagnostics ? &diagnostics : nullptr;
+    if (first && aov_pass && centre_only && !camera_.orthographic)
+      tracePrimary(*window, diag, frame.times.intersect_ms);
     else
       traceBatched(rays_, HitMode::Closest, hits_, diag, frame.times.intersect_ms);
-    if (first) fillPrimaryAovs(frame.aovs, diagnostics, spp);
+    if (first && aov_pass) fillPrimaryAovs(frame.aovs, diagnostics, spp);
     shadeGeneration(depth, frame);
     if (progress) progress(depth + 1, total_stages);
     if (settings_.primary_only) break;
   }
-
-  frame.film.width = w;
-  frame.film.height = h;
-  frame.film.rgb.resize(pixels * 3);
-  for (size_t p = 0; p < pixels; ++p)
-    for (int c = 0; c < 3; ++c) frame.film.rgb[3 * p + c] = radiance_[p][c];
-  frame.times.frame_ms = frame_clock.ms();
 }
 
 void Renderer::fillPrimaryAovs(PrimaryAovs& a, const RayDiagnostics& diagnostics, int spp) {
@@ -192,6 +227,10 @@ void Renderer::fillPrimaryAovs(PrimaryAovs& a, const RayDiagnostics& diagnostics
       a.list_length[p] = float(diagnostics.list_length[r]);
     }
   }
+}
+
+bool Renderer::worthTracing(const glm::vec3& weight) const {
+  return std::max({weight.x, weight.y, weight.z}) >= settings_.min_path_weight;
 }
 
 void Renderer::shadeGeneration(int depth, Frame& frame) {
@@ -257,8 +296,7 @@ void Renderer::shadeGeneration(int depth, Frame& frame) {
       glm::vec3 r = reflectDirection(-to_light, n);
       float rv = std::max(0.0f, glm::dot(r, -d));
       glm::vec3 direct = terms.diffuse / kPi * e * cos_theta +
-                         terms.specular * e * (terms.phong_exponent + 2.0f) / (2.0f * kPi) *
-                             std::pow(rv, terms.phong_exponent);
+                         terms.specular * e * std::pow(rv, terms.phong_exponent);
       glm::vec3 contribution = weight * direct;
       if (glm::length(contribution) == 0.0f) continue;
       out.shadow_rays.push_back(makeRay(above, to_light, distance));
@@ -270,16 +308,18 @@ void Renderer::shadeGeneration(int depth, Frame& frame) {
       float eta = backface ? mat.ior : 1.0f / mat.ior;
       float f = fresnelDielectric(-glm::dot(d, n), eta);
       glm::vec3 t_dir;
+      glm::vec3 t_weight = weight * terms.transmission * (1.0f - f) * mat.base_color;
       if (f < 1.0f && refractDirection(d, n, eta, t_dir) && glm::dot(t_dir, ng) < 0.0f) {
-        glm::vec3 t_weight = weight * terms.transmission * (1.0f - f) * mat.base_color;
-        out.rays.push_back(makeRay(offsetRayOrigin(p, -ng, settings_.ray_offset), t_dir, kInf));
-        out.paths.push_back(PathRay{path.pixel, t_weight, RayKind::Refraction});
+        if (worthTracing(t_weight)) {
+          out.rays.push_back(makeRay(offsetRayOrigin(p, -ng, settings_.ray_offset), t_dir, kInf));
+          out.paths.push_back(PathRay{path.pixel, t_weight, RayKind::Refraction});
+        }
       } else {
         f = 1.0f;  // total internal reflection
       }
       reflect_weight += glm::vec3(terms.transmission * f);
     }
-    if (glm::length(reflect_weight) > 0.0f) {
+    if (glm::length(reflect_weight) > 0.0f && worthTracing(weight * reflect_weight)) {
       glm::vec3 r = reflectDirection(d, n);
       if (glm::dot(r, ng) <= 0.0f) r = reflectDirection(d, ng);  // keep it above the surface
       out.rays.push_back(makeRay(above, r, kInf));

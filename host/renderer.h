@@ -26,6 +26,14 @@ struct RenderSettings {
   RayOffset ray_offset;   // how secondary ray origins leave the surface
   bool want_diagnostics = false;  // fill tests / PE / list-length AOVs of primary rays
   PixelWindow crop;  // render only these pixels (the film stays full size, zero outside)
+  // Adaptive supersampling (--aa adaptive): centres first, then aa_samples jittered samples
+  // where a pixel differs from a 4-neighbour by more than aa_threshold (any channel).
+  bool adaptive_aa = false;
+  int aa_samples = 8;
+  float aa_threshold = 0.1f;
+  // Adaptive depth: a reflection/refraction ray whose throughput (max channel) is below
+  // this is not traced; 0 traces every ray up to max_depth.
+  float min_path_weight = 0.0f;
 };
 
 // Rays traced per kind in one frame.
@@ -53,6 +61,7 @@ struct Frame {
   PrimaryAovs aovs;
   RayCounts rays;
   FrameTimes times;
+  uint64_t refined_pixels = 0;  // pixels that got extra samples (adaptive supersampling)
 };
 
 // Rays at or beyond this count are traced in several batches, bounding device memory.
@@ -78,6 +87,12 @@ class Renderer {
   };
   void traceBatched(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                     RayDiagnostics* diagnostics, double& ms);
+  // Traces `spp` primary samples (jitter indices first_sample...) of window_pixels_, each
+  // path starting with throughput `weight`, through all bounces into radiance_. `window`
+  // (the pixels as a rectangle) marks the first pass, which writes the AOVs.
+  void renderPass(Frame& frame, int spp, int first_sample, float weight,
+                  const PixelWindow* window, const std::function<void(int, int)>& progress);
+  bool worthTracing(const glm::vec3& weight) const;
   // Primary rays (one per pixel of `window`, in rays_) through Intersector::intersectPrimary.
   void tracePrimary(const PixelWindow& window, RayDiagnostics* diagnostics, double& ms);
   void shadeGeneration(int depth, Frame& frame);

@@ -1,0 +1,96 @@
+// "Model no more than a scene needs": adaptive supersampling and adaptive depth trace
+// fewer rays than their uniform twins, at a bounded cost in error.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "brute_intersector.h"
+#include "cl_runtime.h"
+#include "default_scene.h"
+#include "prepared_triangles.h"
+#include "renderer.h"
+
+namespace gridrt {
+namespace {
+
+class Adaptive : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
+    runtime_ = std::make_unique<ClRuntime>("");
+    scene_ = makeDefaultScene();
+    triangles_ = prepareTriangles(scene_);
+  }
+  Frame render(RenderSettings settings) {
+    BruteIntersector brute(*runtime_, triangles_);
+    Renderer renderer(scene_, scene_.camera, brute, settings);
+    Frame frame;
+    renderer.render(frame);
+    return frame;
+  }
+  // Error of the displayed image: both clamped to [0, 1] as a PNG would show them.
+  static double rmse(const Film& a, const Film& b) {
+    double sum = 0;
+    for (size_t k = 0; k < a.rgb.size(); ++k) {
+      double d = std::clamp(a.rgb[k], 0.0f, 1.0f) - std::clamp(b.rgb[k], 0.0f, 1.0f);
+      sum += d * d;
+    }
+    return std::sqrt(sum / double(a.rgb.size()));
+  }
+  static RenderSettings small() {
+    RenderSettings s;
+    s.width = 128;
+    s.height = 96;
+    return s;
+  }
+  std::unique_ptr<ClRuntime> runtime_;
+  Scene scene_;
+  std::vector<GrTriangle> triangles_;
+};
+
+TEST_F(Adaptive, SupersamplingRefinesOnlyEdgesAndBeatsOneSampleForFewerRaysThanUniform) {
+  RenderSettings reference = small();
+  reference.spp = 32;
+  Frame truth = render(reference);
+  RenderSettings one = small();
+  Frame single = render(one);
+  RenderSettings uniform = small();
+  uniform.spp = 9;
+  Frame nine = render(uniform);
+  RenderSettings adaptive = small();
+  adaptive.adaptive_aa = true;
+  adaptive.aa_samples = 8;
+  Frame adapt = render(adaptive);
+  const size_t pixels = 128 * 96;
+  EXPECT_GT(adapt.refined_pixels, 0u);
+  EXPECT_LT(adapt.refined_pixels, pixels / 2) << "refinement should stay near edges";
+  EXPECT_LT(adapt.rays.primary, nine.rays.primary / 2);
+  double e1 = rmse(single.film, truth.film), ea = rmse(adapt.film, truth.film),
+         e9 = rmse(nine.film, truth.film);
+  std::printf("rmse vs 32 spp: 1 spp %.5f, adaptive %.5f (%llu primary rays), 9 spp %.5f (%llu)\n",
+              e1, ea, (unsigned long long)adapt.rays.primary, e9,
+              (unsigned long long)nine.rays.primary);
+  EXPECT_LT(ea, 0.5 * e1);   // far better than one sample
+  EXPECT_LT(ea, 1.25 * e9);  // close to uniform 9 spp at a fraction of the rays
+}
+
+TEST_F(Adaptive, DepthCutoffTracesFewerRaysWithinABoundedError) {
+  RenderSettings full = small();
+  Frame all = render(full);
+  RenderSettings cut = small();
+  cut.min_path_weight = 0.05f;
+  Frame fewer = render(cut);
+  uint64_t secondary_all = all.rays.reflection + all.rays.refraction;
+  uint64_t secondary_cut = fewer.rays.reflection + fewer.rays.refraction;
+  EXPECT_LT(secondary_cut, secondary_all);
+  double e = rmse(all.film, fewer.film);
+  std::printf("secondary rays %llu -> %llu, rmse %.5f\n", (unsigned long long)secondary_all,
+              (unsigned long long)secondary_cut, e);
+  EXPECT_GT(e, 0.0);    // something was really left out
+  EXPECT_LT(e, 0.02);   // paths below 5 % throughput carry little light
+}
+
+}  // namespace
+}  // namespace gridrt
