@@ -1,5 +1,6 @@
 #include "brute_intersector.h"
 
+#include "prepared_triangles.h"
 #include "stopwatch.h"
 
 namespace gridrt {
@@ -13,7 +14,8 @@ BruteIntersector::BruteIntersector(ClRuntime& runtime, const std::vector<GrTrian
                    const KernelOptions& kernel_options)
     : rt_(runtime), triangle_count_(int(triangles.size())) {
   kernel_ = cl::Kernel(rt_.program("brute.cl", kernel_options.defines()), "brute_intersect");
-  triangles_.upload(rt_, triangles);
+  checkTriangleLayout(triangles, kernel_options);
+  triangles_.uploadNow(rt_, triangles);
 }
 
 void BruteIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,

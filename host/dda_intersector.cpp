@@ -1,6 +1,7 @@
 #include "dda_intersector.h"
 
 #include "grid_dda.h"
+#include "prepared_triangles.h"
 #include "stopwatch.h"
 
 namespace gridrt {
@@ -13,9 +14,10 @@ DdaIntersector::DdaIntersector(ClRuntime& runtime, const UniformGrid& grid,
                    const KernelOptions& kernel_options)
     : rt_(runtime), grid_(grid) {
   kernel_ = cl::Kernel(rt_.program("dda.cl", kernel_options.defines()), "dda_intersect");
-  pe_of_voxel_.upload(rt_, grid.pe_of_voxel);
-  pe_tri_begin_.upload(rt_, grid.pe_tri_begin);
-  pe_triangles_.upload(rt_, grid.pe_triangles);
+  checkTriangleLayout(grid.pe_triangles, kernel_options);
+  pe_of_voxel_.uploadNow(rt_, grid.pe_of_voxel);
+  pe_tri_begin_.uploadNow(rt_, grid.pe_tri_begin);
+  pe_triangles_.uploadNow(rt_, grid.pe_triangles);
 }
 
 void DdaIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,

@@ -26,6 +26,8 @@ class DeviceBuffer {
     return buffer_;
   }
 
+  // Non-blocking: `data` must stay alive and unchanged until the queue has run the copy
+  // (a later blocking read or finish). Per-batch data that outlives the batch only.
   cl::Buffer& upload(ClRuntime& rt, const T* data, size_t count) {
     reserve(rt, count);
     if (count) rt.queue().enqueueWriteBuffer(buffer_, CL_FALSE, 0, count * sizeof(T), data);
@@ -33,6 +35,14 @@ class DeviceBuffer {
   }
   cl::Buffer& upload(ClRuntime& rt, const std::vector<T>& data) {
     return upload(rt, data.data(), data.size());
+  }
+
+  // Blocking: returns once the data is copied, so `data` may be a temporary.
+  cl::Buffer& uploadNow(ClRuntime& rt, const std::vector<T>& data) {
+    reserve(rt, data.size());
+    if (!data.empty())
+      rt.queue().enqueueWriteBuffer(buffer_, CL_TRUE, 0, data.size() * sizeof(T), data.data());
+    return buffer_;
   }
 
   void download(ClRuntime& rt, T* data, size_t count) {

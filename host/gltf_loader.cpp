@@ -847,6 +847,12 @@ class SceneBuilder {
         ++scene_.dropped_degenerate;
         continue;
       }
+      // Exactly zero area (in double, where the float vertices are exact): no ray can hit it.
+      const glm::dvec3 a(p[0]);
+      if (glm::cross(glm::dvec3(p[1]) - a, glm::dvec3(p[2]) - a) == glm::dvec3(0.0)) {
+        ++scene_.dropped_zero_area;
+        continue;
+      }
       // The glTF spec: a mirroring transform turns the winding clockwise; swap it back.
       if (mirrored) std::swap(p[1], p[2]), std::swap(n[1], n[2]);
       const glm::vec3 face = geometricNormal(p[0], p[1], p[2]);
@@ -935,6 +941,9 @@ class SceneBuilder {
     if (scene_.dropped_degenerate > 0)
       scene_.warnings.push_back(std::to_string(scene_.dropped_degenerate) +
                                 " triangle(s) with NaN/Inf coordinates dropped");
+    if (scene_.dropped_zero_area > 0)
+      scene_.warnings.push_back(std::to_string(scene_.dropped_zero_area) +
+                                " triangle(s) with zero area dropped");
   }
 
   const tinygltf::Model& model_;

@@ -6,6 +6,7 @@
 #include <climits>
 #include <cmath>
 
+#include "prepared_triangles.h"
 #include "stopwatch.h"
 
 namespace gridrt {
@@ -21,8 +22,9 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
                                                         std::to_string(kPeLocalSize) + " " +
                                                         kernel_options.defines()),
                        "gridrt_pe");
-  pe_tri_begin_.upload(rt_, grid.pe_tri_begin);
-  pe_triangles_.upload(rt_, grid.pe_triangles);
+  checkTriangleLayout(grid.pe_triangles, kernel_options);
+  pe_tri_begin_.uploadNow(rt_, grid.pe_tri_begin);
+  pe_triangles_.uploadNow(rt_, grid.pe_triangles);
   rays_per_pe_.assign(grid.peCount(), 0);
   tests_per_pe_.assign(grid.peCount(), 0);
 }

@@ -16,7 +16,10 @@ enum class HitMode { Closest, AnyHit };
 // Build-time choices of the device kernels.
 struct KernelOptions {
   bool watertight = false;  // Woop-Benthin-Wald watertight test instead of Moeller-Trumbore
-  std::string defines() const { return watertight ? "-DGR_WATERTIGHT" : ""; }
+  // The watertight test reads vertices, not edges (GrTriangle::vertex_layout).
+  std::string defines() const {
+    return watertight ? "-DGR_WATERTIGHT -DGR_TRIANGLE_VERTICES" : "";
+  }
 };
 
 // Work and time counted over all batches since the last reset.

@@ -89,6 +89,12 @@ void Renderer::tracePrimary(const PixelWindow& window, RayDiagnostics* diagnosti
   // Bands of whole rows keep each batch a window of the image, as PinholeView requires.
   const int w = window.width();
   const int rows = std::max(1, int(kMaxBatchRays / size_t(w)));
+  if (rows >= window.height()) {  // one batch: no copies
+    PinholeView view = PinholeView::of(camera_, settings_.width, settings_.height, window);
+    intersector_.intersectPrimary(view, rays_, hits_, diagnostics);
+    ms += clock.ms();
+    return;
+  }
   hits_.resize(rays_.size());
   if (diagnostics) *diagnostics = RayDiagnostics{};
   RayDiagnostics part;
@@ -286,7 +292,8 @@ void Renderer::shadeGeneration(int depth, Frame& frame) {
                          glm::vec3(hit.t / mat.attenuation_distance));
     SurfaceTerms terms = surfaceTerms(mat);
     local[i] = weight * (mat.emissive + settings_.ambient * terms.diffuse);
-    glm::vec3 above = offsetRayOrigin(p, ng, settings_.ray_offset);
+    const glm::vec3 origin(ray.ox, ray.oy, ray.oz);
+    glm::vec3 above = offsetRayOrigin(p, ng, origin, settings_.ray_offset);
     for (size_t l = 0; l < lights_.size(); ++l) {
       glm::vec3 to_light;
       float distance;
@@ -311,7 +318,7 @@ void Renderer::shadeGeneration(int depth, Frame& frame) {
       glm::vec3 t_weight = weight * terms.transmission * (1.0f - f) * mat.base_color;
       if (f < 1.0f && refractDirection(d, n, eta, t_dir) && glm::dot(t_dir, ng) < 0.0f) {
         if (worthTracing(t_weight)) {
-          out.rays.push_back(makeRay(offsetRayOrigin(p, -ng, settings_.ray_offset), t_dir, kInf));
+          out.rays.push_back(makeRay(offsetRayOrigin(p, -ng, origin, settings_.ray_offset), t_dir, kInf));
           out.paths.push_back(PathRay{path.pixel, t_weight, RayKind::Refraction});
         }
       } else {

@@ -55,6 +55,9 @@ struct Scene {
   bool has_camera = false;  // false: the renderer frames the bounding box
   bool has_lights = false;  // false: the renderer adds a default light
   size_t dropped_degenerate = 0;  // triangles skipped for NaN/Inf coordinates
+  size_t dropped_zero_area = 0;   // triangles skipped for exactly zero area (repeated or
+                                  // collinear vertices): never hit, and Moeller-Trumbore
+                                  // would report garbage hits on repeated vertices
   size_t skipped_primitives = 0;  // non-triangle primitives skipped
   std::vector<std::string> warnings;
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "prepared_triangles.h"
 #include "triangle_box_overlap.h"
 
 namespace gridrt {
@@ -15,14 +16,6 @@ struct VoxelRef {
   int voxel;
   int triangle;
 };
-
-// Vertices of the triangle exactly as Moeller-Trumbore sees it (v0, v0+e1, v0+e2),
-// summed in double where float + float is exact.
-void exactVertices(const GrTriangle& t, glm::dvec3 v[3]) {
-  v[0] = glm::dvec3(t.v0x, t.v0y, t.v0z);
-  v[1] = v[0] + glm::dvec3(t.e1x, t.e1y, t.e1z);
-  v[2] = v[0] + glm::dvec3(t.e2x, t.e2y, t.e2z);
-}
 
 // The range of voxel indices on one axis whose margin-grown cell may touch [lo, hi].
 // The margin can span several cells (a scene collapsed to a point or a plane has cells
@@ -99,7 +92,7 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
 #pragma omp for schedule(static)
     for (long long t = 0; t < (long long)triangles.size(); ++t) {
       glm::dvec3 v[3];
-      exactVertices(triangles[t], v);
+      triangleVertices(triangles[t], v);
       glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2]));
       glm::dvec3 thi = glm::max(v[0], glm::max(v[1], v[2]));
       int first[3], last[3];

@@ -70,24 +70,22 @@ bool refractDirection(const glm::vec3& d, const glm::vec3& n, float eta, glm::ve
   return true;
 }
 
-glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n, const RayOffset& offset) {
+glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n, const glm::vec3& ray_origin,
+                          const RayOffset& offset) {
   if (!offset.robust) return p + offset.epsilon * n;
-  // Waechter & Binder: move p by a number of ulps proportional to the normal (integer
-  // offset in the float's bit pattern), which scales with |p|; near the origin, where
-  // ulps become tiny, fall back to a small absolute offset.
-  constexpr float kOrigin = 1.0f / 32.0f;        // below this |coordinate| use float_scale
-  constexpr float kFloatScale = 1.0f / 65536.0f;  // absolute offset near the origin
-  constexpr float kIntScale = 256.0f;             // ulps moved per unit of normal
-  glm::vec3 out;
-  for (int a = 0; a < 3; ++a) {
-    int32_t of = int32_t(kIntScale * n[a]);
-    int32_t bits;
-    std::memcpy(&bits, &p[a], sizeof bits);
-    bits += p[a] < 0.0f ? -of : of;
-    float moved;
-    std::memcpy(&moved, &bits, sizeof moved);
-    out[a] = std::fabs(p[a]) < kOrigin ? p[a] + kFloatScale * n[a] : moved;
-  }
+  // Wächter & Binder's idea (Ray Tracing Gems, ch. 6) of an offset that scales with the
+  // coordinates, bounded here by the error of p = o + t*d, which grows with |o| as well
+  // as |p| (their fixed 1/65536 near the origin is too small for a far camera and too
+  // large for a tiny scene: tests/ray_offset_test.cpp).
+  float magnitude = 0.0f;
+  for (int a = 0; a < 3; ++a)
+    magnitude = std::max({magnitude, std::fabs(p[a]), std::fabs(ray_origin[a])});
+  float distance = kHitPointErrorUlps * std::ldexp(1.0f, -23) * magnitude;
+  glm::vec3 out = p + distance * n;
+  for (int a = 0; a < 3; ++a)
+    if (n[a] != 0.0f)
+      out[a] = std::nextafter(out[a], n[a] > 0.0f ? std::numeric_limits<float>::infinity()
+                                                  : -std::numeric_limits<float>::infinity());
   return out;
 }
 

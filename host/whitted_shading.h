@@ -35,10 +35,19 @@ bool refractDirection(const glm::vec3& d, const glm::vec3& n, float eta, glm::ve
 
 // Ray origins for secondary rays, moved off the surface so they do not hit it again.
 struct RayOffset {
-  bool robust = true;     // Waechter & Binder (Ray Tracing Gems, ch. 6): scale-aware
+  bool robust = true;     // scale-aware: bounded by the hit point's own rounding error
   float epsilon = 1e-4f;  // fixed world-space offset used when !robust
 };
 
-glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& normal, const RayOffset& offset);
+// The hit point p = o + t*d carries a rounding error of a few ulps of the largest
+// coordinate involved (of p and of the ray origin o); the robust offset moves p along the
+// normal by this many ulps of that magnitude, then one more ulp per axis. 16 already
+// passes the re-intersection and shadow-acne tests at scales 1e-4..1e6; 64 is a 4x margin.
+constexpr float kHitPointErrorUlps = 64.0f;
+
+// p moved off the surface along `normal` (unit, on the side the new ray leaves towards);
+// ray_origin is the origin of the ray that found p.
+glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& normal,
+                          const glm::vec3& ray_origin, const RayOffset& offset);
 
 }  // namespace gridrt

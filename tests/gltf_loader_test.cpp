@@ -344,12 +344,16 @@ TEST(GltfLoader, DropsTrianglesWithNanVertexAndCountsThem) {
   EXPECT_NE(s.warnings.back().find("1 triangle(s) with NaN/Inf"), std::string::npos);
 }
 
-TEST(GltfLoader, KeepsZeroAreaTriangles) {
+TEST(GltfLoader, DropsZeroAreaTrianglesWithACount) {
   GltfBuilder b;
-  int pos = b.vec3({0, 0, 0, 1, 0, 0, 2, 0, 0});
+  // Collinear, a repeated vertex, and one real triangle.
+  int pos = b.vec3({0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0});
   Scene s = loadJson(b.json(singleMesh(primitive(pos))));
   EXPECT_EQ(s.triangleCount(), 1u);
+  EXPECT_EQ(s.dropped_zero_area, 2u);
   EXPECT_EQ(s.dropped_degenerate, 0u);
+  ASSERT_FALSE(s.warnings.empty());
+  EXPECT_NE(s.warnings.back().find("2 triangle(s) with zero area"), std::string::npos);
 }
 
 // ---------------------------------------------------------------------------------------------

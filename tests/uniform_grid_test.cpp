@@ -74,12 +74,8 @@ GridSettings fixedDims(int nx, int ny, int nz, double margin_rel = kGridMarginRe
 
 GridSettings autoDims() { return GridSettings{}; }
 
-// Triangle vertices exactly as the grid (and Moeller-Trumbore) define them.
-void verticesOf(const GrTriangle& t, glm::dvec3 v[3]) {
-  v[0] = glm::dvec3(t.v0x, t.v0y, t.v0z);
-  v[1] = v[0] + glm::dvec3(t.e1x, t.e1y, t.e1z);
-  v[2] = v[0] + glm::dvec3(t.e2x, t.e2y, t.e2z);
-}
+// Triangle vertices exactly as the grid (and the intersectors) define them.
+void verticesOf(const GrTriangle& t, glm::dvec3 v[3]) { triangleVertices(t, v); }
 
 // The closed box of voxel (x, y, z) grown by the grid's margin.
 void grownVoxelBox(const UniformGrid& g, int x, int y, int z, glm::dvec3& lo, glm::dvec3& hi) {

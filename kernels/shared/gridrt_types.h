@@ -16,13 +16,17 @@ typedef struct {
   float dx, dy, dz, tmax;
 } GrRay; /* 32 bytes */
 
-/* A triangle prepared for Moeller-Trumbore: first vertex and the two edges from it. */
+/* A triangle prepared for the intersectors: first vertex and the two edges from it
+ * (Moeller-Trumbore). In the watertight build the e fields hold the vertices v1 and v2
+ * themselves: v0 + e1 in float does not always give back v1, and neighbours must share
+ * their edge vertices bit for bit to be watertight. */
 typedef struct {
   float v0x, v0y, v0z;
   float e1x, e1y, e1z;
   float e2x, e2y, e2z;
-  int prim; /* global triangle index in load order */
-  int pad0, pad1;
+  int prim;          /* global triangle index in load order */
+  int vertex_layout; /* 1: e1/e2 hold v1/v2 (watertight build), 0: edges */
+  int pad1;
 } GrTriangle; /* 48 bytes */
 
 /* The closest hit found for one ray (or one ray inside one PE): prim < 0 means none. */

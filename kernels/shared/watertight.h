@@ -80,14 +80,14 @@ GR_FN int gr_intersect_watertight_vertices(float ox, float oy, float oz, float d
   float sy = gr_wt_pick(ky, dx, dy, dz) / dkz;
   float sz = 1.0f / dkz;
   /* Vertices relative to the origin, sheared and projected. */
-  float rax = ax - ox, ray_ = ay - oy, raz = az - oz;
+  float rax = ax - ox, ray2 = ay - oy, raz = az - oz;
   float rbx = bx - ox, rby = by - oy, rbz = bz - oz;
   float rcx = cx - ox, rcy = cy - oy, rcz = cz - oz;
-  float a_kz = gr_wt_pick(kz, rax, ray_, raz);
+  float a_kz = gr_wt_pick(kz, rax, ray2, raz);
   float b_kz = gr_wt_pick(kz, rbx, rby, rbz);
   float c_kz = gr_wt_pick(kz, rcx, rcy, rcz);
-  float pax = gr_wt_pick(kx, rax, ray_, raz) - sx * a_kz;
-  float pay = gr_wt_pick(ky, rax, ray_, raz) - sy * a_kz;
+  float pax = gr_wt_pick(kx, rax, ray2, raz) - sx * a_kz;
+  float pay = gr_wt_pick(ky, rax, ray2, raz) - sy * a_kz;
   float pbx = gr_wt_pick(kx, rbx, rby, rbz) - sx * b_kz;
   float pby = gr_wt_pick(ky, rbx, rby, rbz) - sy * b_kz;
   float pcx = gr_wt_pick(kx, rcx, rcy, rcz) - sx * c_kz;
