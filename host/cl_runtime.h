@@ -35,7 +35,8 @@ std::string assembleKernelSource(const std::string& file);
 
 class ClRuntime {
  public:
-  // spec: "" picks the first device of any type; "P:D" by index; else a case-insensitive
+  // spec: "" picks the first device of any type; "P:D" by index; "N" the Nth device of
+  // --list-devices; else a case-insensitive
   // substring of the device name. Throws UsageError for an unknown device, RenderError
   // when no OpenCL platform is installed.
   explicit ClRuntime(const std::string& spec);

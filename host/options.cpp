@@ -72,6 +72,7 @@ void parseRayOffset(const std::string& text, RayOffset& offset) {
 
 struct RawOptions {
   std::string accel = "gridrt", grid = "auto", background, ray_offset = "robust", look_at;
+  std::string crop, crop_output = "full", intersector = "mt", aa = "uniform";
   std::vector<std::string> aovs;
 };
 
@@ -118,11 +119,43 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.add_option("--ray-offset", raw.ray_offset,
                  "secondary ray origins: robust (scale-aware) or epsilon=E")
       ->capture_default_str();
+  app.add_option("--intersector", raw.intersector,
+                 "ray/triangle test: mt (Moeller-Trumbore) or watertight (Woop et al. 2013)")
+      ->capture_default_str()->check(CLI::IsMember({"mt", "watertight"}));
+  app.add_option("--aa", raw.aa,
+                 "anti-aliasing: uniform (--spp samples) or adaptive (centres, then "
+                 "--aa-samples more where neighbours differ by > --aa-threshold)")
+      ->capture_default_str()->check(CLI::IsMember({"uniform", "adaptive"}));
+  app.add_option("--aa-samples", o.aa_samples, "adaptive: extra samples per refined pixel")
+      ->capture_default_str()->check(CLI::Range(1, 4096));
+  app.add_option("--aa-threshold", o.aa_threshold,
+                 "adaptive: largest neighbour difference (linear, any channel) left alone")
+      ->capture_default_str()->check(CLI::Range(0.0f, 1000.0f));
+  app.add_option("--min-path-weight", o.min_path_weight,
+                 "adaptive depth: skip bounces whose throughput is below this (0: never)")
+      ->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
   app.add_option("--camera", o.camera_name, "use the glTF camera with this name");
   app.add_option("--look-at", raw.look_at, "EX,EY,EZ:TX,TY,TZ camera eye and target");
   app.add_option("--fov", o.fov_degrees, "vertical field of view in degrees")
       ->check(CLI::Range(0.01f, 179.0f));
+  app.add_option("--crop", raw.crop,
+                 "X0,Y0,X1,Y1 render only pixels [X0,X1) x [Y0,Y1) (tiles: tools/merge_tiles)");
+  app.add_option("--crop-output", raw.crop_output,
+                 "with --crop: full (full-size image, zero outside) or window (.exr/.tif only, "
+                 "offset kept in the data window)")
+      ->capture_default_str()->check(CLI::IsMember({"full", "window"}));
   app.set_version_flag("--version", std::string("gridrt ") + GRIDRT_VERSION);
+}
+
+void finishCrop(Options& o, const RawOptions& raw) {
+  o.crop_output = raw.crop_output == "window" ? CropOutput::Window : CropOutput::Full;
+  if (raw.crop.empty()) return;
+  o.crop = parseCropWindow(raw.crop, o.width, o.height);
+  // A window alone must say where it lies, which only formats with a data window can.
+  if (o.crop_output == CropOutput::Window && !keepsDataWindow(o.output))
+    throw UsageError("--crop-output window: the output must be .exr, .tif or .tiff (the "
+                     "window's offset is kept in the file's data window), got '" +
+                     o.output + "'");
 }
 
 void finish(Options& o, const RawOptions& raw) {
@@ -132,6 +165,8 @@ void finish(Options& o, const RawOptions& raw) {
                                        : AccelKind::GridRt;
   parseGrid(raw.grid, o.grid);
   parseRayOffset(raw.ray_offset, o.ray_offset);
+  o.watertight = raw.intersector == "watertight";
+  o.adaptive_aa = raw.aa == "adaptive";
   if (!raw.background.empty()) o.background = parseVec3("--background", raw.background);
   if (!raw.look_at.empty()) {
     size_t colon = raw.look_at.find(':');
@@ -141,6 +176,7 @@ void finish(Options& o, const RawOptions& raw) {
     o.target = parseVec3("--look-at", raw.look_at.substr(colon + 1));
     if (*o.eye == *o.target) throw UsageError("--look-at: eye and target are the same point");
   }
+  finishCrop(o, raw);
   for (const auto& spec : raw.aovs) {
     size_t eq = spec.find('=');
     std::string name = eq == std::string::npos ? spec : spec.substr(0, eq);

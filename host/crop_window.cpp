@@ -1,0 +1,54 @@
+#include "crop_window.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <regex>
+
+#include "errors.h"
+
+namespace gridrt {
+
+bool keepsDataWindow(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".exr" || ext == ".tif" || ext == ".tiff";
+}
+
+PixelWindow parseCropWindow(const std::string& text, int width, int height) {
+  // At most 9 digits each, so the conversion cannot overflow an int.
+  static const std::regex four(R"(^(\d{1,9}),(\d{1,9}),(\d{1,9}),(\d{1,9})$)");
+  std::smatch m;
+  if (!std::regex_match(text, m, four))
+    throw UsageError("--crop: expected X0,Y0,X1,Y1 (four pixel bounds), got '" + text + "'");
+  PixelWindow w{std::stoi(m[1]), std::stoi(m[2]), std::stoi(m[3]), std::stoi(m[4])};
+  if (w.x0 >= w.x1 || w.y0 >= w.y1 || w.x1 > width || w.y1 > height)
+    throw UsageError("--crop: window '" + text + "' must satisfy X0 < X1 <= " +
+                     std::to_string(width) + " and Y0 < Y1 <= " + std::to_string(height) +
+                     " (half-open pixel bounds inside the " + std::to_string(width) + "x" +
+                     std::to_string(height) + " image)");
+  return w;
+}
+
+void zeroOutsideWindow(std::vector<float>& data, int width, int height, int channels,
+                       const PixelWindow& window) {
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      if (x < window.x0 || x >= window.x1 || y < window.y0 || y >= window.y1) {
+        float* p = data.data() + (size_t(y) * width + x) * channels;
+        std::fill(p, p + channels, 0.0f);
+      }
+}
+
+std::vector<float> cutWindow(const std::vector<float>& data, int width, int channels,
+                             const PixelWindow& window) {
+  std::vector<float> out;
+  out.reserve(size_t(window.width()) * window.height() * channels);
+  for (int y = window.y0; y < window.y1; ++y) {
+    auto row = data.begin() + (size_t(y) * width + window.x0) * channels;
+    out.insert(out.end(), row, row + size_t(window.width()) * channels);
+  }
+  return out;
+}
+
+}  // namespace gridrt

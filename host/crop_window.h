@@ -1,0 +1,37 @@
+// --crop X0,Y0,X1,Y1: a rectangular window of the image: the half-open pixel
+// range [x0, x1) x [y0, y1), columns from the left, rows from the top, in the coordinates
+// of the full image. Rendering tiles with it and pasting them (tools/merge_tiles) gives
+// the full render bit for bit, because each pixel's rays do not depend on the window.
+//
+// The window itself is the Renderer's PixelWindow (RenderSettings::crop traces only its
+// rays); this file parses it and cuts or masks rendered images to it.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "pixel_window.h"
+
+namespace gridrt {
+
+// What --crop writes: the full-size image with zeros outside the window, or the window
+// alone, carrying its offset in the file's data window (EXR/TIFF).
+enum class CropOutput { Full, Window };
+
+// True for the output extensions whose files keep a data window (an offset inside a larger
+// display window), so a window alone can be written: .exr, .tif, .tiff.
+bool keepsDataWindow(const std::string& path);
+
+// Parses "X0,Y0,X1,Y1" and checks 0 <= X0 < X1 <= width and 0 <= Y0 < Y1 <= height.
+// Throws UsageError naming the flag and the problem.
+PixelWindow parseCropWindow(const std::string& text, int width, int height);
+
+// Sets every value of pixels outside `window` to zero, in place. `data` is row-major,
+// width x height pixels of `channels` interleaved values.
+void zeroOutsideWindow(std::vector<float>& data, int width, int height, int channels,
+                       const PixelWindow& window);
+
+// The values of the pixels inside `window`, row-major, window.width() x window.height().
+std::vector<float> cutWindow(const std::vector<float>& data, int width, int channels,
+                             const PixelWindow& window);
+
+}  // namespace gridrt

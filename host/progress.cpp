@@ -1,0 +1,68 @@
+#include "progress.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+namespace gridrt {
+namespace {
+
+constexpr int kBarCells = 24;
+// Redraw at most this often: --repeat can call update() thousands of times a second.
+constexpr double kRedrawIntervalMs = 100.0;
+
+std::string formatSeconds(double s) {
+  char text[32];
+  if (s < 60.0) std::snprintf(text, sizeof text, "%.1f s", s);
+  else std::snprintf(text, sizeof text, "%d min %02d s", int(s) / 60, int(s) % 60);
+  return text;
+}
+
+}  // namespace
+
+bool progressWanted(bool quiet) {
+  if (quiet || !::isatty(STDERR_FILENO)) return false;
+  const char* term = std::getenv("TERM");
+  return !(term && std::strcmp(term, "dumb") == 0);  // no '\r' redraw on dumb terminals
+}
+
+std::string formatProgressLine(double fraction, double elapsed_s, double remaining_s) {
+  fraction = std::clamp(fraction, 0.0, 1.0);
+  int filled = int(fraction * kBarCells + 0.5);
+  std::string bar(size_t(filled), '#');
+  bar.append(size_t(kBarCells - filled), '.');
+  char percent[8];
+  std::snprintf(percent, sizeof percent, "%3d%%", int(fraction * 100.0 + 0.5));
+  return "gridrt: [" + bar + "] " + percent + "  " + formatSeconds(elapsed_s) +
+         " elapsed, about " + formatSeconds(std::max(0.0, remaining_s)) + " left";
+}
+
+ProgressBar::ProgressBar(bool enabled, double delay_s)
+    : enabled_(enabled), delay_ms_(delay_s * 1000.0) {}
+
+void ProgressBar::update(double fraction) {
+  if (!enabled_) return;
+  double now = clock_.ms();
+  if (now < delay_ms_ || now - last_draw_ms_ < kRedrawIntervalMs) return;
+  last_draw_ms_ = now;
+  double elapsed = now / 1000.0;
+  // A linear estimate: the first bounce (primary rays) dominates, so early estimates are
+  // pessimistic rather than optimistic.
+  double remaining = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+  // "\033[K" erases what a longer previous line left to the right.
+  std::fprintf(stderr, "\r%s\033[K", formatProgressLine(fraction, elapsed, remaining).c_str());
+  std::fflush(stderr);
+  drawn_ = true;
+}
+
+void ProgressBar::finish() {
+  if (!drawn_) return;
+  std::fprintf(stderr, "\r\033[K");
+  std::fflush(stderr);
+  drawn_ = false;
+}
+
+}  // namespace gridrt

@@ -1,0 +1,40 @@
+// A one-line progress bar on stderr for renders that take a while:
+//   gridrt: [##########..........]  50%  1.2 s elapsed, about 1.2 s left
+// Drawn only when stderr is a terminal and --quiet is off, and only once the render has
+// run for `delay_s` (quick renders print nothing but the closing summary). The line is
+// redrawn in place with '\r' and erased by finish(), so the summary line replaces it.
+#pragma once
+#include <string>
+
+#include "stopwatch.h"
+
+namespace gridrt {
+
+// Whether a progress bar belongs on stderr: a terminal (not a pipe or a file), not quiet.
+bool progressWanted(bool quiet);
+
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled, double delay_s = 0.5);
+  ~ProgressBar() { finish(); }
+  ProgressBar(const ProgressBar&) = delete;
+  ProgressBar& operator=(const ProgressBar&) = delete;
+
+  // fraction in [0, 1] of the whole job done so far.
+  void update(double fraction);
+  // Erases the bar if it was drawn. Safe to call more than once.
+  void finish();
+
+ private:
+  bool enabled_;
+  bool drawn_ = false;
+  double delay_ms_;
+  double last_draw_ms_ = -1e9;
+  Stopwatch clock_;
+};
+
+// The text of the bar (without '\r'), for a given fraction, elapsed and remaining seconds.
+// Separate from the drawing so that it can be tested.
+std::string formatProgressLine(double fraction, double elapsed_s, double remaining_s);
+
+}  // namespace gridrt

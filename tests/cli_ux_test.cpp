@@ -1,0 +1,144 @@
+// The command line's conveniences: the progress bar (only on a terminal), --crop parsing,
+// --device by plain index, and the quick refusal of absurd image sizes.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "crop_window.h"
+#include "errors.h"
+#include "options.h"
+#include "progress.h"
+#include "run_command.h"
+#include "test_support.h"
+
+namespace {
+
+using gridrt::test::CommandResult;
+using gridrt::test::gridrtBinary;
+using gridrt::test::joinArgs;
+using gridrt::test::runCommand;
+using gridrt::test::tempPath;
+
+gridrt::Options parse(std::vector<std::string> words) {
+  words.insert(words.begin(), "gridrt");
+  std::vector<const char*> argv;
+  for (const auto& w : words) argv.push_back(w.c_str());
+  return *gridrt::parseCommandLine(int(argv.size()), argv.data());
+}
+
+bool haveDevice() { return runCommand({gridrtBinary(), "--list-devices"}).exit_code == 0; }
+
+// --- progress -------------------------------------------------------------------------------
+
+TEST(Progress, LineShowsBarPercentElapsedAndRemaining) {
+  std::string line = gridrt::formatProgressLine(0.5, 1.25, 1.25);
+  EXPECT_EQ(line, "gridrt: [############............]  50%  1.2 s elapsed, about 1.2 s left");
+  EXPECT_NE(gridrt::formatProgressLine(1.0, 75.0, 0.0).find("1 min 15 s elapsed"),
+            std::string::npos);
+}
+
+TEST(Progress, FractionIsClampedAndRemainingNeverNegative) {
+  std::string line = gridrt::formatProgressLine(1.7, 2.0, -3.0);
+  EXPECT_NE(line.find("100%"), std::string::npos) << line;
+  EXPECT_NE(line.find("about 0.0 s left"), std::string::npos) << line;
+}
+
+TEST(Progress, NothingButTheSummaryWhenStderrIsNotATerminal) {
+  if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
+  CommandResult r = runCommand({gridrtBinary(), "--width", "64", "--height", "48", "--repeat",
+                                "8", "-o", tempPath("quiet_progress.png")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("elapsed"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("Mrays/s"), std::string::npos) << "the closing summary is kept: " << r.err;
+}
+
+// util-linux `script` runs the command on a pseudo-terminal, where the bar must appear.
+TEST(Progress, BarIsDrawnOnATerminalForALongRender) {
+  if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
+  if (std::system("command -v script >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "util-linux 'script' is not installed (needed for a pseudo-terminal)";
+  // Long enough (about 2 s here) to pass the bar's 0.5 s delay on any machine.
+  std::string command = gridrtBinary() + " --width 320 --height 240 --repeat 30 -o " +
+                        tempPath("tty_progress.png");
+  CommandResult r = runCommand({"script", "-qec", command, "/dev/null"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("elapsed, about"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find('\r'), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Mrays/s"), std::string::npos) << r.out;
+}
+
+TEST(Progress, QuietSuppressesTheBarOnATerminalToo) {
+  EXPECT_FALSE(gridrt::progressWanted(true));
+}
+
+// --- --crop ---------------------------------------------------------------------------------
+
+TEST(CropOption, ParsesHalfOpenBoundsInsideTheImage) {
+  gridrt::Options o = parse({"--width", "64", "--height", "48", "--crop", "0,8,64,48"});
+  ASSERT_TRUE(o.crop);
+  EXPECT_EQ(o.crop->x0, 0);
+  EXPECT_EQ(o.crop->y0, 8);
+  EXPECT_EQ(o.crop->width(), 64);
+  EXPECT_EQ(o.crop->height(), 40);
+  EXPECT_EQ(o.crop_output, gridrt::CropOutput::Full);
+}
+
+TEST(CropOption, RefusesMalformedEmptyOrOutsideWindows) {
+  for (const char* bad : {"1,2,3", "a,b,c,d", "0,0,0,10", "5,0,4,10", "0,0,65,48", "0,0,64,49",
+                          "-1,0,10,10", "0,0,99999999999,10", "0,0,10,10,10", " 0,0,10,10"}) {
+    EXPECT_THROW(parse({"--width", "64", "--height", "48", "--crop", bad}), gridrt::UsageError)
+        << bad;
+  }
+}
+
+TEST(CropOption, WindowOutputNeedsAFormatWithADataWindow) {
+  EXPECT_THROW(parse({"--crop", "0,0,8,8", "--crop-output", "window", "-o", "a.png"}),
+               gridrt::UsageError);
+  EXPECT_THROW(parse({"--crop", "0,0,8,8", "--crop-output", "tile"}), gridrt::UsageError);
+  EXPECT_NO_THROW(parse({"--crop", "0,0,8,8", "--crop-output", "window", "-o", "a.EXR"}));
+}
+
+TEST(CropOption, BadWindowOnTheCommandLineExitsWithUsageCode) {
+  CommandResult r = runCommand({gridrtBinary(), "--crop", "0,0,700,10"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err.rfind("gridrt: --crop:", 0), 0u) << r.err;
+}
+
+// --- resources and devices ------------------------------------------------------------------
+
+TEST(Resources, HugeImageIsRefusedAtOnceWithOneLine) {
+  const std::string out = tempPath("huge.png");
+  auto start = std::chrono::steady_clock::now();
+  CommandResult r = runCommand({gridrtBinary(), "--width", "65536", "--height", "65536", "-o", out});
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_LT(seconds, 10.0);
+  EXPECT_EQ(r.err.rfind("gridrt: image 65536x65536", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(Devices, PlainIndexPicksTheNthDeviceOfTheTable) {
+  if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
+  std::vector<std::string> argv{gridrtBinary(), "--device", "0", "--width", "8", "--height", "8",
+                                "-o", tempPath("device0.png")};
+  CommandResult r = runCommand(argv);
+  ASSERT_EQ(r.exit_code, 0) << joinArgs(argv) << "\n" << r.err;
+  EXPECT_EQ(r.err.rfind("gridrt: device 0:0 ", 0), 0u) << r.err;
+}
+
+TEST(Devices, IndexPastTheTableIsAUsageError) {
+  if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
+  for (const char* spec : {"999", "99999999999", "0:99999999999"}) {
+    CommandResult r = runCommand({gridrtBinary(), "--device", spec, "-o", tempPath("none.png")});
+    EXPECT_EQ(r.exit_code, 2) << spec << ": " << r.err;
+    EXPECT_NE(r.err.find("unknown device"), std::string::npos) << r.err;
+  }
+}
+
+}  // namespace

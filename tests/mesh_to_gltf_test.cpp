@@ -1,0 +1,90 @@
+// tools/mesh_to_gltf.py: PLY (ASCII, binary little-endian) and OBJ meshes become .glb files
+// that gridrt's loader reads back with the same triangles (fan-triangulated polygons,
+// negative OBJ indices). Skipped when python3 is not installed.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "errors.h"
+#include "gltf_loader.h"
+#include "run_command.h"
+#include "test_support.h"
+
+namespace {
+
+using gridrt::test::runCommand;
+using gridrt::test::sourcePath;
+using gridrt::test::tempPath;
+
+void writeBytes(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+// Runs the converter on `mesh` (written to a temp file named `name`) and loads the result.
+gridrt::Scene convertAndLoad(const std::string& name, const std::string& mesh) {
+  const std::string in = tempPath(name), out = tempPath(name + ".glb");
+  writeBytes(in, mesh);
+  auto r = runCommand({"python3", sourcePath("tools/mesh_to_gltf.py"), in, out});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return gridrt::loadGltfFile(out);
+}
+
+bool havePython() { return std::system("command -v python3 >/dev/null 2>&1") == 0; }
+
+// The unit square z = 0 as a quad: fan-triangulated into (0,1,2) and (0,2,3).
+const float kSquare[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+const int kFan[6] = {0, 1, 2, 0, 2, 3};
+
+void expectSquare(const gridrt::Scene& scene) {
+  ASSERT_EQ(scene.triangleCount(), 2u);
+  for (int k = 0; k < 6; ++k)
+    for (int a = 0; a < 3; ++a)
+      EXPECT_EQ(scene.positions[k][a], kSquare[kFan[k]][a]) << "corner " << k << " axis " << a;
+}
+
+TEST(MeshToGltf, AsciiPlyQuadBecomesTwoTriangles) {
+  if (!havePython()) GTEST_SKIP() << "python3 is not installed";
+  expectSquare(convertAndLoad("square.ply",
+                              "ply\nformat ascii 1.0\ncomment a unit square\n"
+                              "element vertex 4\nproperty float x\nproperty float y\n"
+                              "property float z\nproperty uchar red\n"
+                              "element face 1\nproperty list uchar int vertex_indices\n"
+                              "end_header\n0 0 0 9\n1 0 0 9\n1 1 0 9\n0 1 0 9\n4 0 1 2 3\n"));
+}
+
+TEST(MeshToGltf, BinaryLittleEndianPlyIsRead) {
+  if (!havePython()) GTEST_SKIP() << "python3 is not installed";
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\n"
+      "property list uchar uint vertex_indices\nend_header\n";
+  ply.append(reinterpret_cast<const char*>(kSquare), sizeof kSquare);  // little-endian host
+  ply.push_back(char(4));
+  const uint32_t quad[4] = {0, 1, 2, 3};
+  ply.append(reinterpret_cast<const char*>(quad), sizeof quad);
+  expectSquare(convertAndLoad("square_binary.ply", ply));
+}
+
+TEST(MeshToGltf, ObjWithNegativeIndicesAndSlashesIsRead) {
+  if (!havePython()) GTEST_SKIP() << "python3 is not installed";
+  expectSquare(convertAndLoad("square.obj",
+                              "# unit square\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n"
+                              "vt 0 0\nf -4/1/1 -3//1 3/1 4\n"));
+}
+
+TEST(MeshToGltf, OutOfRangeIndexIsAnErrorAndWritesNothing) {
+  if (!havePython()) GTEST_SKIP() << "python3 is not installed";
+  const std::string in = tempPath("bad.obj"), out = tempPath("bad.glb");
+  writeBytes(in, "v 0 0 0\nv 1 0 0\nf 1 2 3\n");
+  auto r = runCommand({"python3", sourcePath("tools/mesh_to_gltf.py"), in, out});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("out of range"), std::string::npos) << r.err;
+  EXPECT_FALSE(gridrt::test::fileExists(out));
+}
+
+}  // namespace

@@ -1,0 +1,129 @@
+// Tiled rendering: tiles rendered with `gridrt --crop ... --crop-output window` and pasted
+// by tools/merge_tiles equal one full render bit for bit, and each tile file carries its
+// offset in its data window. Runs gridrt and merge_tiles as subprocesses.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "image_output.h"
+#include "run_command.h"
+#include "test_support.h"
+
+namespace {
+
+using gridrt::test::CommandResult;
+using gridrt::test::gridrtBinary;
+using gridrt::test::joinArgs;
+using gridrt::test::runCommand;
+using gridrt::test::tempPath;
+
+// tools/merge_tiles is built next to gridrt, in the tools/ folder of the build.
+std::string mergeTilesBinary() {
+  return (std::filesystem::path(gridrtBinary()).parent_path() / "tools" / "merge_tiles").string();
+}
+
+void expectSuccess(const std::vector<std::string>& argv) {
+  CommandResult r = runCommand(argv);
+  ASSERT_EQ(r.exit_code, 0) << joinArgs(argv) << "\n" << r.err;
+}
+
+// Renders the default scene at 64x48 with `extra` flags to `path`.
+void render(const std::string& path, std::vector<std::string> extra) {
+  std::vector<std::string> argv{gridrtBinary(), "-q", "--width", "64", "--height", "48",
+                                "-o", path};
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  expectSuccess(argv);
+}
+
+struct Rect {
+  int x0, y0, x1, y1;
+  std::string text() const {
+    return std::to_string(x0) + "," + std::to_string(y0) + "," + std::to_string(x1) + "," +
+           std::to_string(y1);
+  }
+};
+
+// Renders `tiles`, merges them, and compares with one full render, bit for bit.
+void expectTilesMergeToFullRender(const std::string& name, const std::vector<Rect>& tiles,
+                                  const std::vector<std::string>& flags) {
+  if (!std::filesystem::exists(mergeTilesBinary()))
+    GTEST_SKIP() << "merge_tiles is not built at " << mergeTilesBinary();
+  const std::string full = tempPath(name + "_full.exr"), merged = tempPath(name + "_merged.exr");
+  render(full, flags);
+  std::vector<std::string> merge{mergeTilesBinary(), merged};
+  for (size_t k = 0; k < tiles.size(); ++k) {
+    std::string tile = tempPath(name + "_tile" + std::to_string(k) + ".exr");
+    std::vector<std::string> tile_flags = flags;
+    tile_flags.insert(tile_flags.end(), {"--crop", tiles[k].text(), "--crop-output", "window"});
+    render(tile, tile_flags);
+    merge.push_back(tile);
+  }
+  expectSuccess(merge);
+  gridrt::ImageData a = gridrt::readImage(full), b = gridrt::readImage(merged);
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.height, b.height);
+  ASSERT_EQ(a.channels, b.channels);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)), 0)
+      << "merged tiles differ from the full render";
+}
+
+TEST(Tiles, FourTilesMergeToTheFullRenderBitForBit) {
+  expectTilesMergeToFullRender("even", {{0, 0, 32, 24}, {32, 0, 64, 24}, {0, 24, 32, 48},
+                                        {32, 24, 64, 48}}, {});
+}
+
+// Uneven bounds and jittered samples: the jitter must follow the full image's pixel index.
+TEST(Tiles, UnevenTilesWithSeveralSamplesMergeBitForBit) {
+  expectTilesMergeToFullRender("jitter", {{0, 0, 23, 17}, {23, 0, 64, 17}, {0, 17, 23, 48},
+                                          {23, 17, 64, 48}}, {"--spp", "3"});
+}
+
+TEST(Tiles, WindowFileCarriesItsOffsetInTheDataWindow) {
+  const std::string tile = tempPath("offset.exr");
+  render(tile, {"--crop", "10,5,30,25", "--crop-output", "window"});
+  auto in = OIIO::ImageInput::open(tile);
+  ASSERT_TRUE(in) << OIIO::geterror();
+  const OIIO::ImageSpec& s = in->spec();
+  EXPECT_EQ(s.x, 10);
+  EXPECT_EQ(s.y, 5);
+  EXPECT_EQ(s.width, 20);
+  EXPECT_EQ(s.height, 20);
+  EXPECT_EQ(s.full_width, 64);
+  EXPECT_EQ(s.full_height, 48);
+}
+
+TEST(Tiles, FullOutputIsZeroOutsideTheWindowAndTheRenderInside) {
+  const std::string full = tempPath("ref.exr"), cropped = tempPath("cropped_full.exr");
+  render(full, {});
+  render(cropped, {"--crop", "8,4,40,30"});
+  gridrt::ImageData a = gridrt::readImage(full), b = gridrt::readImage(cropped);
+  ASSERT_EQ(b.width, 64);
+  ASSERT_EQ(b.height, 48);
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x)
+      for (int c = 0; c < 3; ++c) {
+        size_t i = (size_t(y) * 64 + x) * 3 + c;
+        bool inside = x >= 8 && x < 40 && y >= 4 && y < 30;
+        ASSERT_EQ(b.pixels[i], inside ? a.pixels[i] : 0.0f) << "pixel " << x << "," << y;
+      }
+}
+
+TEST(Tiles, OverlappingTilesAreRefused) {
+  if (!std::filesystem::exists(mergeTilesBinary()))
+    GTEST_SKIP() << "merge_tiles is not built at " << mergeTilesBinary();
+  const std::string a = tempPath("overlap_a.exr"), b = tempPath("overlap_b.exr");
+  render(a, {"--crop", "0,0,32,24", "--crop-output", "window"});
+  render(b, {"--crop", "16,0,48,24", "--crop-output", "window"});
+  const std::string merged = tempPath("overlap_merged.exr");
+  CommandResult r = runCommand({mergeTilesBinary(), merged, a, b});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("overlap"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(merged));
+}
+
+}  // namespace
