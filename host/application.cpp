@@ -167,6 +167,7 @@ RenderSettings renderSettings(const Options& o) {
   settings.aa_threshold = o.aa_threshold;
   settings.min_path_weight = o.min_path_weight;
   if (o.crop) settings.crop = *o.crop;  // only the window's rays are traced
+  settings.want_aovs = !o.aovs.empty();  // filling them costs time per frame
   for (const auto& aov : o.aovs)
     settings.want_diagnostics |= aov.first == "tests" || aov.first == "pe" || aov.first == "listlen";
   return settings;

@@ -203,7 +203,8 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
       tracePrimary(*window, diag, frame.times.intersect_ms);
     else
       traceBatched(rays_, HitMode::Closest, hits_, diag, frame.times.intersect_ms);
-    if (first && aov_pass) fillPrimaryAovs(frame.aovs, diagnostics, spp);
+    if (first && aov_pass && (settings_.want_aovs || settings_.want_diagnostics))
+      fillPrimaryAovs(frame.aovs, diagnostics, spp);
     shadeGeneration(depth, frame);
     if (progress) progress(depth + 1, total_stages);
     if (settings_.primary_only) break;

@@ -24,6 +24,7 @@ struct RenderSettings {
   glm::vec3 background{0.0f};  // colour of rays that miss (black, as in the paper)
   float ambient = 0.05f;  // ambient radiance factor: ambient * diffuse albedo, lit or not
   RayOffset ray_offset;   // how secondary ray origins leave the surface
+  bool want_aovs = true;          // fill the depth / primid / normal AOVs of primary rays
   bool want_diagnostics = false;  // fill tests / PE / list-length AOVs of primary rays
   PixelWindow crop;  // render only these pixels (the film stays full size, zero outside)
   // Adaptive supersampling (--aa adaptive): centres first, then aa_samples jittered samples
@@ -65,7 +66,7 @@ struct Frame {
 };
 
 // Rays at or beyond this count are traced in several batches, bounding device memory.
-constexpr size_t kMaxBatchRays = size_t(1) << 18;
+constexpr size_t kMaxBatchRays = size_t(1) << 21;
 
 class Renderer {
  public:
