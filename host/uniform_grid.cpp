@@ -24,8 +24,14 @@ struct VoxelRef {
 // overflow the int conversion.
 void axisRange(double lo, double hi, double gmin, double cell, double m, int n, int& first,
                int& last) {
-  first = int(std::clamp(std::floor((lo - m - gmin) / cell) - 1.0, 0.0, double(n - 1)));
-  last = int(std::clamp(std::floor((hi + m - gmin) / cell) + 1.0, 0.0, double(n - 1)));
+  // Voxel i, grown by m, is [gmin + i*cell - m, gmin + (i+1)*cell + m]; it meets [lo, hi]
+  // exactly for (lo - m - gmin)/cell - 1 <= i <= (hi + m - gmin)/cell. Widened by a
+  // billionth of a cell against double rounding; the exact test decides the rest.
+  constexpr double kRangeSlack = 1e-9;
+  double a = (lo - m - gmin) / cell - 1.0 - kRangeSlack;
+  double b = (hi + m - gmin) / cell + kRangeSlack;
+  first = int(std::clamp(std::ceil(a), 0.0, double(n - 1)));
+  last = int(std::clamp(std::floor(b), 0.0, double(n - 1)));
 }
 
 }  // namespace
@@ -97,6 +103,12 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
       glm::dvec3 thi = glm::max(v[0], glm::max(v[1], v[2]));
       int first[3], last[3];
       for (int a = 0; a < 3; ++a) axisRange(tlo[a], thi[a], gmin[a], cell[a], m, n[a], first[a], last[a]);
+      // A triangle whose bounding box meets one grown voxel only lies inside it (the
+      // grown voxels cover the grid, which contains every triangle): no test needed.
+      if (first[0] == last[0] && first[1] == last[1] && first[2] == last[2]) {
+        mine.push_back({first[0] + n.x * (first[1] + n.y * first[2]), int(t)});
+        continue;
+      }
       for (int z = first[2]; z <= last[2]; ++z)
         for (int y = first[1]; y <= last[1]; ++y)
           for (int x = first[0]; x <= last[0]; ++x) {

@@ -133,6 +133,28 @@ def main(argv=None):
                     row.update(compare(img, pid, ref))
                     rows.append(row)
                     print(f"{tag}: {row['frame_ms']:.1f} ms rmse {row['rmse']:.3g}", flush=True)
+    # (a') model no more than the scene needs: sampling and depth settings against a
+    # converged render (32 jittered samples per pixel, full depth).
+    sampling = [("1 spp", ["--spp", "1"]), ("4 spp", ["--spp", "4"]), ("9 spp", ["--spp", "9"]),
+                ("adaptive 1+8", ["--aa", "adaptive", "--aa-samples", "8"]),
+                ("adaptive 1+4", ["--aa", "adaptive", "--aa-samples", "4"]),
+                ("9 spp, depth cut 0.05", ["--spp", "9", "--min-path-weight", "0.05"]),
+                ("9 spp, max depth 2", ["--spp", "9", "--max-depth", "2"])]
+    if has_flag(args.binary, "--aa"):
+        for scene in args.scenes:
+            name = os.path.splitext(os.path.basename(scene))[0]
+            conv = render(args.binary, scene, work, f"{name}_converged", ["--spp", "32"], size)
+            for label, extra in sampling:
+                tag = f"{name}_sampling_{label.replace(' ', '_').replace(',', '')}"
+                img, pid, stats = render(args.binary, scene, work, tag,
+                                         extra + ["--repeat", str(args.repeat)], size)
+                row = {"chart": "sampling", "scene": name, "intersector": "mt", "density": "auto",
+                       "spp": label, "scale": 1.0, "ray_offset": "robust",
+                       "frame_ms": stats.get("frame_ms"), "rays": stats["rays"]["total"]}
+                row.update(compare(img, pid, conv))
+                rows.append(row)
+                print(f"{tag}: {row['frame_ms']:.1f} ms, {row['rays']} rays, rmse {row['rmse']:.3g}",
+                      flush=True)
     # (b) error against scene scale.
     for scale in args.scales:
         scene = scaled_copy(args.scale_scene, scale, work)
@@ -149,8 +171,11 @@ def main(argv=None):
             print(f"{tag}: rmse {row['rmse']:.3g}", flush=True)
 
     csv_path = os.path.join(args.out, "accuracy.csv")
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
     with open(csv_path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w = csv.DictWriter(f, fieldnames=keys)
         w.writeheader()
         w.writerows(rows)
     charts(rows, args.out)
@@ -183,6 +208,23 @@ def charts(rows, out):
         ax.legend()
         fig.tight_layout()
         fig.savefig(os.path.join(out, "accuracy_time_error.png"), dpi=120)
+        plt.close(fig)
+    sm = [r for r in rows if r["chart"] == "sampling"]
+    if sm:
+        fig, ax = plt.subplots(figsize=(7, 5))
+        pts = [(r["frame_ms"], r["rmse"]) for r in sm]
+        ax.scatter([p[0] for p in pts], [p[1] for p in pts])
+        for r in sm:
+            ax.annotate(f"{r['spp']} ({r['rays'] / 1e3:.0f}k rays)", (r["frame_ms"], r["rmse"]),
+                        fontsize=7)
+        front = sorted(pareto(pts), key=lambda i: pts[i][0])
+        ax.plot([pts[i][0] for i in front], [pts[i][1] for i in front], "k--", label="Pareto front")
+        ax.set_xlabel("frame time (ms)")
+        ax.set_ylabel("RMSE against a 32-spp render")
+        ax.set_title("Sampling and depth: time against error")
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(os.path.join(out, "accuracy_sampling.png"), dpi=120)
         plt.close(fig)
     sc = [r for r in rows if r["chart"] == "scale"]
     if sc:
