@@ -1,15 +1,33 @@
 #include "prepared_triangles.h"
 
 #include <stdexcept>
+#include <utility>
 
 namespace gridrt {
+
+namespace {
+bool lexLess(const glm::vec3& p, const glm::vec3& q) {
+  return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
+}
+}  // namespace
+
+void canonicalVertices(const glm::vec3* in, glm::vec3 out[3]) {
+  out[0] = in[0];
+  out[1] = in[1];
+  out[2] = in[2];
+  if (lexLess(out[1], out[0])) std::swap(out[0], out[1]);
+  if (lexLess(out[2], out[1])) std::swap(out[1], out[2]);
+  if (lexLess(out[1], out[0])) std::swap(out[0], out[1]);
+}
 
 std::vector<GrTriangle> prepareTriangles(const Scene& scene, const KernelOptions& kernel) {
   std::vector<GrTriangle> out(scene.triangleCount());
   const bool vertices = kernel.watertight;
   for (size_t t = 0; t < out.size(); ++t) {
-    const glm::vec3& a = scene.positions[3 * t];
-    glm::vec3 b = scene.positions[3 * t + 1], c = scene.positions[3 * t + 2];
+    glm::vec3 v[3];
+    canonicalVertices(&scene.positions[3 * t], v);
+    const glm::vec3& a = v[0];
+    glm::vec3 b = v[1], c = v[2];
     if (!vertices) {
       b -= a;
       c -= a;

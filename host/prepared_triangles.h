@@ -10,8 +10,15 @@
 
 namespace gridrt {
 
+// The three vertices in a canonical order (lexicographic): a triangle's t then does not
+// depend on how the file ordered its vertices, so duplicate faces (the same three
+// vertices, another order) get bit-identical hits and the tie rule (lower index) decides,
+// as it does in the double-precision reference. Barycentrics therefore refer to this
+// order; the renderer recomputes its own from the hit point.
+void canonicalVertices(const glm::vec3* in, glm::vec3 out[3]);
+
 // In the layout the kernels of `kernel` read: edges for Moeller-Trumbore, vertices for
-// the watertight test.
+// the watertight test; vertices in canonical order.
 std::vector<GrTriangle> prepareTriangles(const Scene& scene, const KernelOptions& kernel = {});
 
 // The three vertices of a prepared triangle, exactly as its intersector sees them (for an

@@ -1,5 +1,6 @@
 #include "reference_intersector.h"
 
+#include "prepared_triangles.h"
 #include "stopwatch.h"
 
 namespace gridrt {
@@ -25,8 +26,9 @@ ReferenceIntersector::ReferenceIntersector(const Scene& scene) {
   e1_.resize(n);
   e2_.resize(n);
   for (size_t t = 0; t < n; ++t) {
-    glm::dvec3 a(scene.positions[3 * t]), b(scene.positions[3 * t + 1]),
-        c(scene.positions[3 * t + 2]);
+    glm::vec3 v[3];
+    canonicalVertices(&scene.positions[3 * t], v);  // exact ties stay exact (duplicates)
+    glm::dvec3 a(v[0]), b(v[1]), c(v[2]);
     v0_[t] = a;
     e1_[t] = b - a;
     e2_[t] = c - a;

@@ -38,6 +38,17 @@ GrRay makeRay(const glm::vec3& o, const glm::vec3& d, float tmax) {
   return GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, tmax};
 }
 
+// Barycentric weights of p (on or near the triangle's plane) for vertices v[0], v[1], v[2].
+glm::vec3 barycentric(const glm::vec3* v, const glm::vec3& p) {
+  glm::vec3 e1 = v[1] - v[0], e2 = v[2] - v[0], w = p - v[0];
+  float d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
+  float w1 = glm::dot(w, e1), w2 = glm::dot(w, e2);
+  float det = d11 * d22 - d12 * d12;
+  if (!(det > 0.0f)) return glm::vec3(1.0f / 3.0f);
+  float b1 = (d22 * w1 - d12 * w2) / det, b2 = (d11 * w2 - d12 * w1) / det;
+  return glm::vec3(1.0f - b1 - b2, b1, b2);
+}
+
 glm::vec3 reflectDirection(const glm::vec3& d, const glm::vec3& n) {
   return d - 2.0f * glm::dot(d, n) * n;
 }
@@ -275,8 +286,11 @@ void Renderer::shadeGeneration(int depth, Frame& frame) {
     glm::vec3 ng = geometric_normals_[tri];
     glm::vec3 n = ng;
     if (!scene_.normals.empty()) {
-      glm::vec3 s = (1.0f - hit.u - hit.v) * scene_.normals[3 * tri] +
-                    hit.u * scene_.normals[3 * tri + 1] + hit.v * scene_.normals[3 * tri + 2];
+      // Barycentrics from the hit point in the file's vertex order (the kernels' u, v
+      // refer to the canonical order of prepareTriangles).
+      glm::vec3 b = barycentric(&scene_.positions[3 * tri], p);
+      glm::vec3 s = b.x * scene_.normals[3 * tri] + b.y * scene_.normals[3 * tri + 1] +
+                    b.z * scene_.normals[3 * tri + 2];
       float len = glm::length(s);
       if (len > 0.0f) n = s / len;
     }
