@@ -49,6 +49,16 @@ glm::vec3 barycentric(const glm::vec3* v, const glm::vec3& p) {
   return glm::vec3(1.0f - b1 - b2, b1, b2);
 }
 
+// Diagnostics of one batch appended after those of the batches before it.
+void appendDiagnostics(RayDiagnostics& all, const RayDiagnostics& batch) {
+  auto append = [](std::vector<int>& to, const std::vector<int>& from) {
+    to.insert(to.end(), from.begin(), from.end());
+  };
+  append(all.tests, batch.tests);
+  append(all.winning_pe, batch.winning_pe);
+  append(all.list_length, batch.list_length);
+}
+
 glm::vec3 reflectDirection(const glm::vec3& d, const glm::vec3& n) {
   return d - 2.0f * glm::dot(d, n) * n;
 }
@@ -82,14 +92,7 @@ void Renderer::traceBatched(const std::vector<GrRay>& rays, HitMode mode,
       batch_rays_.assign(rays.begin() + first, rays.begin() + first + count);
       intersector_.intersect(batch_rays_, mode, batch_hits_, diagnostics ? &part : nullptr);
       std::copy(batch_hits_.begin(), batch_hits_.end(), hits.begin() + first);
-      if (diagnostics) {
-        auto append = [](std::vector<int>& to, const std::vector<int>& from) {
-          to.insert(to.end(), from.begin(), from.end());
-        };
-        append(diagnostics->tests, part.tests);
-        append(diagnostics->winning_pe, part.winning_pe);
-        append(diagnostics->list_length, part.list_length);
-      }
+      if (diagnostics) appendDiagnostics(*diagnostics, part);
     }
   }
   ms += clock.ms();
@@ -116,14 +119,7 @@ void Renderer::tracePrimary(const PixelWindow& window, RayDiagnostics* diagnosti
     PinholeView view = PinholeView::of(camera_, settings_.width, settings_.height, band);
     intersector_.intersectPrimary(view, batch_rays_, batch_hits_, diagnostics ? &part : nullptr);
     std::copy(batch_hits_.begin(), batch_hits_.end(), hits_.begin() + first);
-    if (diagnostics) {
-      auto append = [](std::vector<int>& to, const std::vector<int>& from) {
-        to.insert(to.end(), from.begin(), from.end());
-      };
-      append(diagnostics->tests, part.tests);
-      append(diagnostics->winning_pe, part.winning_pe);
-      append(diagnostics->list_length, part.list_length);
-    }
+    if (diagnostics) appendDiagnostics(*diagnostics, part);
   }
   ms += clock.ms();
 }

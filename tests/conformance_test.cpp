@@ -31,19 +31,6 @@ class Conformance : public ::testing::Test {
     runtime_ = std::make_unique<ClRuntime>("");
   }
 
-  // Number of rays where `got` differs from `want` (prim, or t bitwise); prints the first.
-  static size_t mismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& got,
-                           const std::string& label) {
-    size_t bad = 0;
-    for (size_t i = 0; i < want.size(); ++i) {
-      bool same = want[i].prim == got[i].prim &&
-                  (want[i].prim < 0 || std::memcmp(&want[i].t, &got[i].t, sizeof(float)) == 0);
-      if (!same && bad++ == 0)
-        ADD_FAILURE() << label << ": ray " << i << " brute prim " << want[i].prim << " t "
-                      << want[i].t << ", got prim " << got[i].prim << " t " << got[i].t;
-    }
-    return bad;
-  }
 
   // Runs every grid intersector at each setting against brute force on `rays`.
   // With `view`, the rays are a pinhole camera's and the footprint-binned primary path
@@ -64,17 +51,17 @@ class Conformance : public ::testing::Test {
       GridRtIntersector interrupt(*runtime_, grid, true);
       DdaIntersector dda(*runtime_, grid);
       gridrt.intersect(rays, HitMode::Closest, got, nullptr);
-      EXPECT_EQ(mismatches(want, got, where + " gridrt"), 0u);
+      EXPECT_EQ(test::hitMismatches(want, got, where + " gridrt"), 0u);
       interrupt.intersect(rays, HitMode::Closest, got, nullptr);
-      EXPECT_EQ(mismatches(want, got, where + " gridrt-interrupt"), 0u);
+      EXPECT_EQ(test::hitMismatches(want, got, where + " gridrt-interrupt"), 0u);
       if (view) {
         gridrt.intersectPrimary(*view, rays, got, nullptr);
-        EXPECT_EQ(mismatches(want, got, where + " gridrt camera path"), 0u);
+        EXPECT_EQ(test::hitMismatches(want, got, where + " gridrt camera path"), 0u);
         interrupt.intersectPrimary(*view, rays, got, nullptr);
-        EXPECT_EQ(mismatches(want, got, where + " gridrt-interrupt camera path"), 0u);
+        EXPECT_EQ(test::hitMismatches(want, got, where + " gridrt-interrupt camera path"), 0u);
       }
       dda.intersect(rays, HitMode::Closest, got, nullptr);
-      EXPECT_EQ(mismatches(want, got, where + " dda"), 0u);
+      EXPECT_EQ(test::hitMismatches(want, got, where + " dda"), 0u);
       // Any-hit (shadow) mode: hit or miss must agree with the closest-hit answer.
       for (Intersector* x : {static_cast<Intersector*>(&gridrt), static_cast<Intersector*>(&dda)}) {
         x->intersect(rays, HitMode::AnyHit, got, nullptr);

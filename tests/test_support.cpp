@@ -2,6 +2,9 @@
 
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
+#include <cstring>
 #include <filesystem>
 
 namespace gridrt::test {
@@ -24,5 +27,18 @@ std::string tempPath(const std::string& name) {
 }
 
 bool fileExists(const std::string& path) { return std::filesystem::exists(path); }
+
+size_t hitMismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& got,
+                     const std::string& label) {
+  size_t bad = 0;
+  for (size_t i = 0; i < want.size(); ++i) {
+    bool same = want[i].prim == got[i].prim &&
+                (want[i].prim < 0 || std::memcmp(&want[i].t, &got[i].t, sizeof(float)) == 0);
+    if (!same && bad++ == 0)
+      ADD_FAILURE() << label << ": ray " << i << " want prim " << want[i].prim << " t "
+                    << want[i].t << ", got prim " << got[i].prim << " t " << got[i].t;
+  }
+  return bad;
+}
 
 }  // namespace gridrt::test

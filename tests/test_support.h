@@ -1,6 +1,9 @@
 // Helpers shared by the tests: paths of the source tree, the shared scenes and the binary.
 #pragma once
 #include <string>
+#include <vector>
+
+#include "gridrt_types.h"
 
 namespace gridrt::test {
 
@@ -9,5 +12,10 @@ std::string sharedScene(const std::string& name);     // <repo>/../shared/scenes
 std::string gridrtBinary();                           // build/gridrt
 std::string tempPath(const std::string& name);        // a fresh path under a per-test temp dir
 bool fileExists(const std::string& path);
+
+// Rays where `got` differs from `want`: another primitive, or another t bit for bit.
+// Reports the first difference as a test failure naming `label`.
+size_t hitMismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& got,
+                     const std::string& label);
 
 }  // namespace gridrt::test

@@ -244,19 +244,6 @@ class Watertight : public ::testing::Test {
     runtime_ = std::make_unique<ClRuntime>("");
   }
 
-  // Rays where `got` differs from `want` (prim, or t bit for bit); names the first.
-  static size_t disagreements(const std::vector<GrHit>& want, const std::vector<GrHit>& got,
-                              const std::string& label) {
-    size_t bad = 0;
-    for (size_t i = 0; i < want.size(); ++i) {
-      bool same = want[i].prim == got[i].prim &&
-                  (want[i].prim < 0 || std::memcmp(&want[i].t, &got[i].t, sizeof(float)) == 0);
-      if (!same && bad++ == 0)
-        ADD_FAILURE() << label << ": ray " << i << " want prim " << want[i].prim << " t "
-                      << want[i].t << ", got prim " << got[i].prim << " t " << got[i].t;
-    }
-    return bad;
-  }
 
   void record(const std::string& key, size_t value) {
     RecordProperty(key, std::to_string(value));
@@ -352,9 +339,9 @@ TEST_F(Watertight, GridIntersectorsAgreeWithBruteOnEdgeAndVertexRays) {
     GridRtIntersector gridrt(*runtime_, grid, false, watertight);
     DdaIntersector dda(*runtime_, grid, watertight);
     gridrt.intersect(rays, HitMode::Closest, got, nullptr);
-    EXPECT_EQ(disagreements(want, got, "gridrt " + std::to_string(n)), 0u);
+    EXPECT_EQ(test::hitMismatches(want, got, "gridrt " + std::to_string(n)), 0u);
     dda.intersect(rays, HitMode::Closest, got, nullptr);
-    EXPECT_EQ(disagreements(want, got, "dda " + std::to_string(n)), 0u);
+    EXPECT_EQ(test::hitMismatches(want, got, "dda " + std::to_string(n)), 0u);
   }
 }
 
@@ -382,7 +369,7 @@ TEST_F(Watertight, BunnyEdgesAndVerticesLeakOnlyWithMollerTrumbore) {
   EXPECT_GT(countLeaks(aimed, mt_hits), 0u);
   EXPECT_EQ(countLeaks(aimed, wt_hits), 0u);
   EXPECT_EQ(hostLeaks(mesh, aimed, HostTest::WatertightVertices), 0u);
-  EXPECT_EQ(disagreements(wt_hits, dda_hits, "bunny dda vs gridrt"), 0u);
+  EXPECT_EQ(test::hitMismatches(wt_hits, dda_hits, "bunny dda vs gridrt"), 0u);
   // gridrt against brute force on a sample (brute over 69k triangles is slow).
   std::vector<GrRay> sample;
   std::vector<GrHit> sample_wt;
@@ -393,7 +380,7 @@ TEST_F(Watertight, BunnyEdgesAndVerticesLeakOnlyWithMollerTrumbore) {
   BruteIntersector brute(*runtime_, wtris, watertight);
   std::vector<GrHit> want;
   brute.intersect(sample, HitMode::Closest, want, nullptr);
-  EXPECT_EQ(disagreements(want, sample_wt, "bunny gridrt vs brute"), 0u);
+  EXPECT_EQ(test::hitMismatches(want, sample_wt, "bunny gridrt vs brute"), 0u);
 }
 
 }  // namespace

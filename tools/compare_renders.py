@@ -23,11 +23,16 @@ def _read(path):
     return buf
 
 
-def image_error(path_a, path_b):
-    """RMSE, PSNR (dB, peak 1) and max abs error over all channels of A against B."""
+def image_error(path_a, path_b, display=False):
+    """RMSE, PSNR (dB, peak 1) and max abs error over all channels of A against B.
+    display=True clamps both to [0, 1] first: the error a viewer of the PNG would see,
+    not dominated by a few very bright pixels near a light."""
     a, b = _read(path_a), _read(path_b)
     if (a.spec().width, a.spec().height) != (b.spec().width, b.spec().height):
         raise RuntimeError(f"{path_a} and {path_b} differ in size")
+    if display:
+        a = oiio.ImageBufAlgo.clamp(a, 0.0, 1.0)
+        b = oiio.ImageBufAlgo.clamp(b, 0.0, 1.0)
     r = oiio.ImageBufAlgo.compare(a, b, 1e-6, 1e-6)
     rmse = float(r.rms_error)
     psnr = float(r.PSNR) if rmse > 0 else math.inf
