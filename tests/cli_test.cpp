@@ -26,9 +26,8 @@
 #include <vector>
 
 #include "image_output.h"
+#include "run_command.h"
 #include "test_support.h"
-
-extern char** environ;
 
 namespace fs = std::filesystem;
 using gridrt::test::gridrtBinary;
@@ -40,16 +39,9 @@ namespace {
 // ---------------------------------------------------------------------------------------------
 // Running the binary
 
-struct RunResult {
-  int exit_code = -1;  // -1: did not exit normally (signal)
-  int signal = 0;
-  std::string out, err;
-};
+using RunResult = gridrt::test::CommandResult;
 
-std::string readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
+std::string readFile(const std::string& path) { return gridrt::test::readWholeFile(path); }
 
 void writeFile(const std::string& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
@@ -64,64 +56,20 @@ std::string describe(const std::vector<std::string>& args) {
 }
 
 // Runs build/gridrt with `args` (no shell: arguments are passed as they are), capturing
-// stdout and stderr through temporary files.
+// stdout and stderr.
 RunResult runGridrt(const std::vector<std::string>& args) {
-  static int counter = 0;
-  const std::string tag = std::to_string(counter++);
-  const std::string out_path = tempPath("cli_stdout_" + tag);
-  const std::string err_path = tempPath("cli_stderr_" + tag);
-
-  const std::string binary = gridrtBinary();
-  std::vector<char*> argv;
-  argv.push_back(const_cast<char*>(binary.c_str()));
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0644);
-  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0644);
-  RunResult r;
-  pid_t pid = 0;
-  int rc = posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) {
-    r.err = "posix_spawn failed: " + std::string(std::strerror(rc));
-    return r;
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-  if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
-  r.out = readFile(out_path);
-  r.err = readFile(err_path);
-  std::error_code ignored;
-  fs::remove(out_path, ignored);
-  fs::remove(err_path, ignored);
+  std::vector<std::string> argv{gridrtBinary()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  RunResult r = gridrt::test::runCommand(argv);
   if (const char* v = std::getenv("GRIDRT_CLI_VERBOSE"); v && *v && *v != '0')
     std::cout << "[cli] " << describe(args) << "\n[cli]   exit " << r.exit_code << ", stderr: "
               << r.err << std::flush;
   return r;
 }
 
-// An empty directory of its own for each test.
-std::string freshDir(const std::string& name) {
-  std::string dir = tempPath("cli_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::vector<std::string> listDir(const std::string& dir) {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
-  std::sort(names.begin(), names.end());
-  return names;
-}
+// Fresh per-test directories: test_support.h.
+std::string freshDir(const std::string& name) { return gridrt::test::freshDir("cli_" + name); }
+using gridrt::test::listDir;
 
 std::string lower(std::string s) {
   for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));

@@ -22,20 +22,9 @@ using gridrt::RenderError;
 
 namespace {
 
-// An empty directory of its own for each test, so listings see only that test's files.
-std::string freshDir(const std::string& name) {
-  std::string dir = gridrt::test::tempPath("image_output_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::vector<std::string> listDir(const std::string& dir) {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
-  std::sort(names.begin(), names.end());
-  return names;
-}
+// Fresh per-test directories: test_support.h.
+std::string freshDir(const std::string& name) { return gridrt::test::freshDir("image_output_" + name); }
+using gridrt::test::listDir;
 
 std::string fileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

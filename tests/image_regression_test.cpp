@@ -24,9 +24,8 @@
 #include <string>
 #include <vector>
 
+#include "run_command.h"
 #include "test_support.h"
-
-extern char** environ;
 
 namespace fs = std::filesystem;
 using gridrt::test::gridrtBinary;
@@ -47,36 +46,14 @@ constexpr double kMaxFailingFraction = 0.001;
 
 std::string referencePath() { return sourcePath("scenes/reference/default_160x120.exr"); }
 
-std::string readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 // Runs build/gridrt with `args` (no shell); returns its exit code (-1 if it did not exit
 // normally) and its stderr.
 int runGridrt(const std::vector<std::string>& args, std::string& err) {
-  const std::string err_path = tempPath("regression_stderr");
-  const std::string binary = gridrtBinary();
-  std::vector<char*> argv{const_cast<char*>(binary.c_str())};
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0644);
-  pid_t pid = 0;
-  int rc = posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) {
-    err = "posix_spawn failed: " + std::string(std::strerror(rc));
-    return -1;
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  err = readFile(err_path);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::vector<std::string> argv{gridrtBinary()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  gridrt::test::CommandResult r = gridrt::test::runCommand(argv);
+  err = r.err;
+  return r.exit_code;
 }
 
 // Renders the default scene once per test process and returns the EXR's path.

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 
@@ -27,6 +28,21 @@ std::string tempPath(const std::string& name) {
 }
 
 bool fileExists(const std::string& path) { return std::filesystem::exists(path); }
+
+std::string freshDir(const std::string& name) {
+  std::string dir = tempPath(name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::vector<std::string> listDir(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  return names;
+}
 
 size_t hitMismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& got,
                      const std::string& label) {

@@ -13,6 +13,11 @@ std::string gridrtBinary();                           // build/gridrt
 std::string tempPath(const std::string& name);        // a fresh path under a per-test temp dir
 bool fileExists(const std::string& path);
 
+// An empty directory of its own (under the per-process temp dir), so a test's listings
+// see only that test's files; and the sorted names in a directory.
+std::string freshDir(const std::string& name);
+std::vector<std::string> listDir(const std::string& dir);
+
 // Rays where `got` differs from `want`: another primitive, or another t bit for bit.
 // Reports the first difference as a test failure naming `label`.
 size_t hitMismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& got,
