@@ -317,6 +317,7 @@ int runApplication(const Options& o) {
   stats["reduce_ms"] = median(t.reduce_ms);
   stats["intersect_ms"] = median(t.intersect_ms);
   stats["shade_ms"] = median(t.shade_ms);
+  stats["generate_ms"] = frame.times.generate_ms;  // primary rays of the last frame
   stats["frame_ms"] = median_frame;
   stats["mrays_per_s"] = median_frame > 0 ? total_rays / (median_frame * 1e3) : 0.0;
   const IntersectCounters& c = t.first_frame_counters;
