@@ -339,7 +339,8 @@ int runApplication(const Options& o) {
     MeanMax rays_pe = meanMax(gridrt->raysPerPe()), tests_pe = meanMax(gridrt->testsPerPe());
     double frames = double(o.repeat + 1);
     stats["lists"] = {{"length_mean", c.rays ? double(c.list_entries) / double(c.rays) : 0.0},
-                      {"length_max", gridrt->maxListLength()},
+                      {"length_max", gridrt->maxListLengthKnown() ? nlohmann::json(gridrt->maxListLength())
+                                                                : nlohmann::json(nullptr)},
                       {"list_ms", median(t.lists_ms)}};
     stats["pe_load"] = {{"rays_mean", rays_pe.mean / frames}, {"rays_max", rays_pe.max / frames},
                         {"tests_mean", tests_pe.mean / frames},

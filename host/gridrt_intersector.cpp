@@ -177,6 +177,7 @@ void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vec
     hits[r] = b.slot >= 0 ? slot_hits_[b.slot] : GrHit{rays[r].tmax, -1, 0.0f, 0.0f};
     if (winners) (*winners)[r] = b.slot >= 0 ? b.pe : -1;
   }
+  if (!diagnostics) list_length_known_ = false;
   if (diagnostics) {
     diagnostics->tests.assign(n, 0);
     diagnostics->list_length.assign(n, 0);

@@ -35,6 +35,9 @@ class GridRtIntersector : public Intersector {
   // Rays and tests each PE received, summed over all batches (load balance).
   const std::vector<uint64_t>& raysPerPe() const { return rays_per_pe_; }
   const std::vector<uint64_t>& testsPerPe() const { return tests_per_pe_; }
+  // Longest traversal list seen. The camera path counts list lengths only when per-ray
+  // diagnostics are asked for (it never builds per-ray lists), so false means "unknown".
+  bool maxListLengthKnown() const { return list_length_known_; }
   uint64_t maxListLength() const { return max_list_length_; }
 
  private:
@@ -47,6 +50,7 @@ class GridRtIntersector : public Intersector {
   std::vector<GrHit> slot_hits_;
   std::vector<uint64_t> rays_per_pe_, tests_per_pe_;
   uint64_t max_list_length_ = 0;
+  bool list_length_known_ = true;
 
   // Phase 1: uploads the batch and runs one work-group per task; slot_hits_ gets one hit
   // (or a miss, or GR_SKIPPED) per entry slot.
