@@ -20,11 +20,22 @@ std::string sharedScene(const std::string& name) {
 
 std::string gridrtBinary() { return GRIDRT_BINARY; }
 
+namespace {
+// The per-process temporary directory, removed when the test process exits.
+struct TempDir {
+  std::filesystem::path path = std::filesystem::temp_directory_path() /
+                               ("gridrt_test_" + std::to_string(::getpid()));
+  ~TempDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path, ignored);
+  }
+};
+}  // namespace
+
 std::string tempPath(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() /
-             ("gridrt_test_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return (dir / name).string();
+  static TempDir dir;
+  std::filesystem::create_directories(dir.path);
+  return (dir.path / name).string();
 }
 
 bool fileExists(const std::string& path) { return std::filesystem::exists(path); }
