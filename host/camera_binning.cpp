@@ -20,6 +20,14 @@ PinholeView PinholeView::of(const Camera& camera, int width, int height, PixelWi
   return v;
 }
 
+const GrPeEntry* CameraBins::entriesOf(const GrPeTask& task) const {
+  for (size_t t = 0; t < thread_offset.size(); ++t)
+    if (size_t(task.slot_base) == thread_offset[t] && !thread_entries[t].empty() &&
+        size_t(task.first_entry) - thread_offset[t] < thread_entries[t].size())
+      return thread_entries[t].data() + (task.first_entry - task.slot_base);
+  return nullptr;
+}
+
 namespace {
 
 // Pixels whose centre rays may pierce the box: the bounding rectangle of its projected
@@ -110,7 +118,7 @@ void binCameraRaysByPe(const UniformGrid& grid, const PinholeView& view, const G
           slab(ray.ox, ray.dx, inv[0], lo.x, hi.x, t0, t1);
           slab(ray.oy, ray.dy, inv[1], lo.y, hi.y, t0, t1);
           slab(ray.oz, ray.dz, inv[2], lo.z, hi.z, t0, t1);
-          *next = GrPeEntry{r, 0, t0, t1};
+          *next = GrPeEntry{r, int(next - out.data()), t0, t1};
           next += t0 <= t1;
         }
       }
@@ -121,22 +129,20 @@ void binCameraRaysByPe(const UniformGrid& grid, const PinholeView& view, const G
         tasks.push_back(GrPeTask{pe, first + k, std::min(task_rays, n - k), 0});
     }
   }
-  // Concatenate the threads' bins; a task's entries stay contiguous.
-  size_t total = 0;
-  for (const auto& e : bins.thread_entries) total += e.size();
-  bins.entries.resize(total);
+  // Offsets of the threads' bins in the device buffer; tasks point into it.
+  bins.thread_offset.assign(threads, 0);
   bins.tasks.clear();
   size_t offset = 0;
   for (int t = 0; t < threads; ++t) {
-    const auto& e = bins.thread_entries[t];
-    if (!e.empty()) std::memcpy(&bins.entries[offset], e.data(), e.size() * sizeof(GrPeEntry));
+    bins.thread_offset[t] = offset;
     for (GrPeTask task : bins.thread_tasks[t]) {
       task.first_entry += int(offset);
+      task.slot_base = int(offset);
       bins.tasks.push_back(task);
     }
-    offset += e.size();
+    offset += bins.thread_entries[t].size();
   }
-  for (size_t k = 0; k < total; ++k) bins.entries[k].slot = int(k);
+  bins.entry_count = offset;
 }
 
 }  // namespace gridrt

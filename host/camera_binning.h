@@ -13,14 +13,21 @@
 
 namespace gridrt {
 
+// The pairs stay in the buffers of the threads that made them (no concatenation): the
+// device buffer holds them one thread after another, thread t's from thread_offset[t];
+// a task's slot_base is its thread's offset and an entry's slot its index there.
 struct CameraBins {
-  std::vector<GrPeEntry> entries;  // grouped by PE; slot = index in this array
   std::vector<GrPeTask> tasks;
   std::vector<int> pairs_per_pe;
-  // Scratch reused between batches.
   std::vector<std::vector<GrPeEntry>> thread_entries;
+  std::vector<size_t> thread_offset;
+  size_t entry_count = 0;
+  // Scratch reused between batches.
   std::vector<std::vector<GrPeTask>> thread_tasks;
   std::vector<float> inv_dir;  // 1/d per ray and axis (0 on a zero axis)
+
+  // The entries of a task, wherever they are kept.
+  const GrPeEntry* entriesOf(const GrPeTask& task) const;
 };
 
 void binCameraRaysByPe(const UniformGrid& grid, const PinholeView& view, const GrRay* rays,

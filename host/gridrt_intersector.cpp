@@ -30,13 +30,15 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
 }
 
 void GridRtIntersector::runPes(const std::vector<GrRay>& rays,
-                               const std::vector<GrPeEntry>& entries,
+                               const std::vector<EntrySegment>& entries, size_t entry_count,
                                const std::vector<GrPeTask>& tasks, size_t slots, HitMode mode) {
-  slot_hits_.resize(slots);
+  slot_hits_ = nullptr;
   if (tasks.empty()) return;
   const size_t n = rays.size();
   rays_.upload(rt_, rays);
-  entries_.upload(rt_, entries);
+  entries_.reserve(rt_, entry_count);
+  for (const EntrySegment& segment : entries)
+    entries_.uploadAt(rt_, segment.offset, segment.data, segment.count);
   tasks_.upload(rt_, tasks);
   slot_hits_dev_.reserve(rt_, slots);
   first_hit_key_.reserve(rt_, n);
@@ -54,7 +56,14 @@ void GridRtIntersector::runPes(const std::vector<GrRay>& rays,
   rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
                                    cl::NDRange(tasks.size() * kPeLocalSize),
                                    cl::NDRange(kPeLocalSize));
-  slot_hits_dev_.download(rt_, slot_hits_.data(), slots);
+  slot_hits_ = static_cast<const GrHit*>(rt_.queue().enqueueMapBuffer(
+      slot_hits_dev_.get(), CL_TRUE, CL_MAP_READ, 0, slots * sizeof(GrHit)));
+}
+
+void GridRtIntersector::releaseSlotHits() {
+  if (!slot_hits_) return;
+  rt_.queue().enqueueUnmapMemObject(slot_hits_dev_.get(), const_cast<GrHit*>(slot_hits_));
+  slot_hits_ = nullptr;
 }
 
 void GridRtIntersector::addPeLoad(const std::vector<int>& pairs_per_pe) {
@@ -75,7 +84,8 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
 
   clock.restart();
   const size_t slots = lists_.entries.size();
-  runPes(rays, bins_.entries, bins_.tasks, slots, mode);
+  runPes(rays, {{bins_.entries.data(), bins_.entries.size(), 0}}, bins_.entries.size(),
+         bins_.tasks, slots, mode);
   counters_.kernel_ms += clock.ms();
 
   // Phase 2: walk each ray's list nearest first; the first PE holding a hit wins.
@@ -112,6 +122,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
       diagnostics->list_length[r] = lists_.lengthOf(r);
     }
   }
+  releaseSlotHits();
   addPeLoad(bins_.pairs_per_pe);
   counters_.rays += n;
   counters_.tests += tests;
@@ -130,8 +141,12 @@ void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vec
   counters_.lists_ms += clock.ms();
 
   clock.restart();
-  const auto& entries = camera_bins_.entries;
-  runPes(rays, entries, camera_bins_.tasks, entries.size(), HitMode::Closest);
+  std::vector<EntrySegment> segments;
+  for (size_t t = 0; t < camera_bins_.thread_entries.size(); ++t)
+    segments.push_back({camera_bins_.thread_entries[t].data(),
+                        camera_bins_.thread_entries[t].size(), camera_bins_.thread_offset[t]});
+  const size_t entry_count = camera_bins_.entry_count;
+  runPes(rays, segments, entry_count, camera_bins_.tasks, entry_count, HitMode::Closest);
   counters_.kernel_ms += clock.ms();
 
   // Phase 2: a ray's list is its pairs in order of entry distance, so the first PE
@@ -151,14 +166,16 @@ void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vec
     for (long long k = 0; k < (long long)tasks.size(); ++k) {
       const GrPeTask& task = tasks[k];
       const int cost = grid_.triangleCountOfPe(task.pe);
-      for (int s = task.first_entry; s < task.first_entry + task.entry_count; ++s) {
+      const GrPeEntry* entries = camera_bins_.entriesOf(task);
+      for (int i = 0; i < task.entry_count; ++i) {
+        const int s = task.first_entry + i;
         const GrHit& h = slot_hits_[s];
         if (h.prim == kSkipped) {
           ++skipped;
           continue;
         }
         tests += cost;
-        const GrPeEntry& e = entries[s];
+        const GrPeEntry& e = entries[i];
         BestPair& b = best[e.ray];
         if (h.prim >= 0 && (e.t_enter < b.t_enter || (e.t_enter == b.t_enter && task.pe < b.pe)))
           b = BestPair{e.t_enter, task.pe, s};
@@ -182,8 +199,9 @@ void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vec
     diagnostics->tests.assign(n, 0);
     diagnostics->list_length.assign(n, 0);
     for (const GrPeTask& task : tasks)
-      for (int s = task.first_entry; s < task.first_entry + task.entry_count; ++s) {
-        int ray = entries[s].ray;
+      for (int i = 0; i < task.entry_count; ++i) {
+        const int s = task.first_entry + i;
+        int ray = camera_bins_.entriesOf(task)[i].ray;
         ++diagnostics->list_length[ray];
         if (slot_hits_[s].prim != kSkipped)
           diagnostics->tests[ray] += grid_.triangleCountOfPe(task.pe);
@@ -191,10 +209,11 @@ void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vec
     for (int length : diagnostics->list_length)
       max_list_length_ = std::max<uint64_t>(max_list_length_, length);
   }
+  releaseSlotHits();
   addPeLoad(camera_bins_.pairs_per_pe);
   counters_.rays += n;
   counters_.tests += tests;
-  counters_.list_entries += entries.size();
+  counters_.list_entries += entry_count;
   counters_.skipped_pairs += skipped;
   counters_.reduce_ms += clock.ms();
 }

@@ -47,15 +47,25 @@ class GridRtIntersector : public Intersector {
   cl::Kernel kernel_;
   TraversalLists lists_;
   PeBins bins_;
-  std::vector<GrHit> slot_hits_;
+  // Phase 1's results, mapped from the device buffer (no copy on a CPU device) between
+  // runPes and releaseSlotHits; null when the batch had no pairs.
+  const GrHit* slot_hits_ = nullptr;
+  void releaseSlotHits();
   std::vector<uint64_t> rays_per_pe_, tests_per_pe_;
   uint64_t max_list_length_ = 0;
   bool list_length_known_ = true;
 
-  // Phase 1: uploads the batch and runs one work-group per task; slot_hits_ gets one hit
+  // Phase 1: uploads the batch and runs one work-group per task; slot_hits_ maps one hit
   // (or a miss, or GR_SKIPPED) per entry slot.
-  void runPes(const std::vector<GrRay>& rays, const std::vector<GrPeEntry>& entries,
-              const std::vector<GrPeTask>& tasks, size_t slots, HitMode mode);
+  // The pairs to upload: `count` entries from `data`, to element `offset` of the buffer.
+  struct EntrySegment {
+    const GrPeEntry* data;
+    size_t count;
+    size_t offset;
+  };
+  void runPes(const std::vector<GrRay>& rays, const std::vector<EntrySegment>& entries,
+              size_t entry_count, const std::vector<GrPeTask>& tasks, size_t slots,
+              HitMode mode);
   void addPeLoad(const std::vector<int>& pairs_per_pe);
   CameraBins camera_bins_;
   struct BestPair {

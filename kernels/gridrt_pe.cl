@@ -36,13 +36,13 @@ void gridrt_pe(__global const GrPeTask* tasks, __global const GrPeEntry* entries
     a_dx[k] = ray.dx; a_dy[k] = ray.dy; a_dz[k] = ray.dz;
     a_lo[k] = ray.tmin; a_hi[k] = ray.tmax;
     a_t0[k] = e.t_enter; a_t1[k] = e.t_exit;
-    a_slot[k] = e.slot; a_ray[k] = e.ray; a_key[k] = as_int(e.t_enter);
+    a_slot[k] = task.slot_base + e.slot; a_ray[k] = e.ray; a_key[k] = as_int(e.t_enter);
     int active = k < lanes;
     if (interrupt && active && first_hit_key[e.ray] < as_int(e.t_enter)) {
       active = 0;
       GrHit skipped;
       skipped.t = 0.0f; skipped.prim = GR_SKIPPED; skipped.u = 0.0f; skipped.v = 0.0f;
-      slot_hits[e.slot] = skipped;
+      slot_hits[a_slot[k]] = skipped;
     }
     a_active[k] = active ? -1 : 0;
     live |= active;

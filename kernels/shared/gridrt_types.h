@@ -51,12 +51,13 @@ typedef struct {
   float t_exit;  /* ... and where it leaves it */
 } GrPeEntry; /* 16 bytes */
 
-/* One work-group's share of one PE: entries [first_entry, first_entry + entry_count). */
+/* One work-group's share of one PE: entries [first_entry, first_entry + entry_count);
+ * an entry's result goes to slot_base + entry.slot. */
 typedef struct {
   int pe;
   int first_entry;
   int entry_count;
-  int pad0;
+  int slot_base;
 } GrPeTask; /* 16 bytes */
 
 #endif
