@@ -66,11 +66,17 @@ void GridRtIntersector::releaseSlotHits() {
   slot_hits_ = nullptr;
 }
 
-void GridRtIntersector::addPeLoad(const std::vector<int>& pairs_per_pe) {
+void GridRtIntersector::finishBatch(const std::vector<int>& pairs_per_pe, size_t rays,
+                                    uint64_t tests, size_t pairs, uint64_t skipped) {
+  releaseSlotHits();
   for (int pe = 0; pe < grid_.peCount(); ++pe) {
     rays_per_pe_[pe] += pairs_per_pe[pe];
     tests_per_pe_[pe] += uint64_t(pairs_per_pe[pe]) * grid_.triangleCountOfPe(pe);
   }
+  counters_.rays += rays;
+  counters_.tests += tests;
+  counters_.list_entries += pairs;
+  counters_.skipped_pairs += skipped;
 }
 
 void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
@@ -122,13 +128,8 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
       diagnostics->list_length[r] = lists_.lengthOf(r);
     }
   }
-  releaseSlotHits();
-  addPeLoad(bins_.pairs_per_pe);
-  counters_.rays += n;
-  counters_.tests += tests;
-  counters_.list_entries += slots;
-  counters_.skipped_pairs += skipped;
   max_list_length_ = std::max(max_list_length_, longest);
+  finishBatch(bins_.pairs_per_pe, n, tests, slots, skipped);
   counters_.reduce_ms += clock.ms();
 }
 
@@ -209,12 +210,7 @@ void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vec
     for (int length : diagnostics->list_length)
       max_list_length_ = std::max<uint64_t>(max_list_length_, length);
   }
-  releaseSlotHits();
-  addPeLoad(camera_bins_.pairs_per_pe);
-  counters_.rays += n;
-  counters_.tests += tests;
-  counters_.list_entries += entry_count;
-  counters_.skipped_pairs += skipped;
+  finishBatch(camera_bins_.pairs_per_pe, n, tests, entry_count, skipped);
   counters_.reduce_ms += clock.ms();
 }
 

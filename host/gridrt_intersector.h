@@ -66,7 +66,10 @@ class GridRtIntersector : public Intersector {
   void runPes(const std::vector<GrRay>& rays, const std::vector<EntrySegment>& entries,
               size_t entry_count, const std::vector<GrPeTask>& tasks, size_t slots,
               HitMode mode);
-  void addPeLoad(const std::vector<int>& pairs_per_pe);
+  // The end of a batch, for both paths: releases phase 1's results and adds the batch to
+  // the PE load and the counters.
+  void finishBatch(const std::vector<int>& pairs_per_pe, size_t rays, uint64_t tests,
+                   size_t pairs, uint64_t skipped);
   CameraBins camera_bins_;
   struct BestPair {
     float t_enter;
