@@ -18,12 +18,13 @@ constexpr int kSkipped = -2;  // prim of a slot the interrupt skipped (kernels/g
 GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid, bool interrupt,
                                      const KernelOptions& kernel_options)
     : rt_(runtime), grid_(grid), interrupt_(interrupt) {
-  kernel_ = cl::Kernel(rt_.program("gridrt_pe.cl", "-DGR_PE_LOCAL_SIZE=" +
-                                                        std::to_string(kPeLocalSize) + " " +
-                                                        kernel_options.defines()),
-                       "gridrt_pe");
+  const std::string defines =
+      "-DGR_PE_LOCAL_SIZE=" + std::to_string(kPeLocalSize) + " " + kernel_options.defines();
+  kernel_ = cl::Kernel(rt_.program("gridrt_pe.cl", defines), "gridrt_pe");
+  bundle_kernel_ = cl::Kernel(rt_.program("gridrt_bundle.cl", defines), "gridrt_bundle");
   checkTriangleLayout(grid.pe_triangles, kernel_options);
   pe_tri_begin_.uploadNow(rt_, grid.pe_tri_begin);
+  voxel_of_pe_.uploadNow(rt_, grid.voxel_of_pe);
   pe_triangles_.uploadNow(rt_, grid.pe_triangles);
   rays_per_pe_.assign(grid.peCount(), 0);
   tests_per_pe_.assign(grid.peCount(), 0);
@@ -135,83 +136,187 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
 
 void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vector<GrRay>& rays,
                                          std::vector<GrHit>& hits, RayDiagnostics* diagnostics) {
+  Stopwatch clock;
+  bundleCameraRays(grid_, view, camera_bundles_, tile_runs_);
+  counters_.lists_ms += clock.ms();
+  intersectBundles(rays, camera_bundles_, HitMode::Closest, hits, diagnostics);
+}
+
+namespace {
+
+// Maps `count` elements of a device buffer into host memory (no copy on a CPU device).
+template <typename T>
+T* mapBuffer(ClRuntime& rt, cl::Buffer& buffer, cl_map_flags flags, size_t count) {
+  return static_cast<T*>(
+      rt.queue().enqueueMapBuffer(buffer, CL_TRUE, flags, 0, std::max<size_t>(count, 1) * sizeof(T)));
+}
+
+int popcount(int bits) { return __builtin_popcount(unsigned(bits)); }
+
+}  // namespace
+
+void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const RayBundles& bundles,
+                                         HitMode mode, std::vector<GrHit>& hits,
+                                         RayDiagnostics* diagnostics) {
   const size_t n = rays.size();
   hits.resize(n);
+  const size_t slots = bundles.ray_of.size();
+  // A packet may read up to 15 rays past its task's end: one packet of padding.
+  const size_t stride = slots + kBundleLanes;
   Stopwatch clock;
-  binCameraRaysByPe(grid_, view, rays.data(), n, kPeTaskRays, camera_bins_);
-  counters_.lists_ms += clock.ms();
 
-  clock.restart();
-  std::vector<EntrySegment> segments;
-  for (size_t t = 0; t < camera_bins_.thread_entries.size(); ++t)
-    segments.push_back({camera_bins_.thread_entries[t].data(),
-                        camera_bins_.thread_entries[t].size(), camera_bins_.thread_offset[t]});
-  const size_t entry_count = camera_bins_.entry_count;
-  runPes(rays, segments, entry_count, camera_bins_.tasks, entry_count, HitMode::Closest);
+  // Phase 1: the rays in bundle order, as planes, straight into the device buffer.
+  planes_.reserve(rt_, GR_PLANES * stride);
+  float* planes = mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
+                                   GR_PLANES * stride);
+#pragma omp parallel for schedule(static)
+  for (long long b = 0; b < (long long)stride; ++b) {
+    int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
+    // Padding: an empty interval (tmin > tmax) never pierces a voxel.
+    GrRay ray = r >= 0 ? rays[r] : GrRay{0, 0, 0, 1.0f, 0, 0, 0, 0.0f};
+    planes[GR_PLANE_OX * stride + b] = ray.ox;
+    planes[GR_PLANE_OY * stride + b] = ray.oy;
+    planes[GR_PLANE_OZ * stride + b] = ray.oz;
+    planes[GR_PLANE_DX * stride + b] = ray.dx;
+    planes[GR_PLANE_DY * stride + b] = ray.dy;
+    planes[GR_PLANE_DZ * stride + b] = ray.dz;
+    planes[GR_PLANE_TMIN * stride + b] = ray.tmin;
+    planes[GR_PLANE_TMAX * stride + b] = ray.tmax;
+  }
+  rt_.queue().enqueueUnmapMemObject(planes_.get(), planes);
+  const size_t lanes = bundles.out_lanes, packets = lanes / kBundleLanes;
+  const GrPacketMasks* masks = nullptr;
+  const float *out_t = nullptr, *out_u = nullptr, *out_v = nullptr;
+  const int* out_prim = nullptr;
+  if (!bundles.tasks.empty()) {
+    bundle_tasks_.upload(rt_, bundles.tasks);
+    out_t_.reserve(rt_, lanes);
+    out_prim_.reserve(rt_, lanes);
+    out_u_.reserve(rt_, lanes);
+    out_v_.reserve(rt_, lanes);
+    masks_.reserve(rt_, packets);
+    first_hit_key_.reserve(rt_, stride);
+    if (interrupt_)
+      rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, stride * sizeof(int));
+    cl::Kernel& k = bundle_kernel_;
+    k.setArg(0, bundle_tasks_.get());
+    k.setArg(1, planes_.get());
+    k.setArg(2, int(stride));
+    k.setArg(3, grid_.info);
+    k.setArg(4, voxel_of_pe_.get());
+    k.setArg(5, pe_tri_begin_.get());
+    k.setArg(6, pe_triangles_.get());
+    k.setArg(7, out_t_.get());
+    k.setArg(8, out_prim_.get());
+    k.setArg(9, out_u_.get());
+    k.setArg(10, out_v_.get());
+    k.setArg(11, masks_.get());
+    k.setArg(12, first_hit_key_.get());
+    k.setArg(13, mode == HitMode::AnyHit ? 1 : 0);
+    k.setArg(14, interrupt_ ? 1 : 0);
+    rt_.queue().enqueueNDRangeKernel(k, cl::NullRange,
+                                     cl::NDRange(bundles.tasks.size() * kPeLocalSize),
+                                     cl::NDRange(kPeLocalSize));
+    masks = mapBuffer<GrPacketMasks>(rt_, masks_.get(), CL_MAP_READ, packets);
+    out_t = mapBuffer<float>(rt_, out_t_.get(), CL_MAP_READ, lanes);
+    out_prim = mapBuffer<int>(rt_, out_prim_.get(), CL_MAP_READ, lanes);
+    out_u = mapBuffer<float>(rt_, out_u_.get(), CL_MAP_READ, lanes);
+    out_v = mapBuffer<float>(rt_, out_v_.get(), CL_MAP_READ, lanes);
+  }
   counters_.kernel_ms += clock.ms();
 
-  // Phase 2: a ray's list is its pairs in order of entry distance, so the first PE
-  // holding a hit is the hit pair with the smallest t_enter (equal t_enter, which only
-  // zero-length voxels at edges and corners share, goes to the lower PE index). Each
-  // thread reduces a share of the tasks into its own per-ray best; then merged per ray.
+  // Phase 2: per ray, the smallest (t, prim) over its PEs' in-voxel hits. Hits are in
+  // their own voxels and voxels are disjoint intervals of the ray, so this is the hit of
+  // the first PE in the ray's list that has one (the paper's rule); on an exact tie at a
+  // shared boundary the lower triangle index wins, as for every intersector. Each thread
+  // owns a range of bundle order and reads the part of every task that falls in it.
   clock.restart();
-  const auto& tasks = camera_bins_.tasks;
-  const int threads = omp_get_max_threads();
-  thread_best_.resize(threads);
-  uint64_t tests = 0, skipped = 0;
-#pragma omp parallel num_threads(threads) reduction(+ : tests, skipped)
-  {
-    auto& best = thread_best_[omp_get_thread_num()];
-    best.assign(n, BestPair{INFINITY, INT_MAX, -1});
-#pragma omp for schedule(dynamic, 64)
-    for (long long k = 0; k < (long long)tasks.size(); ++k) {
-      const GrPeTask& task = tasks[k];
-      const int cost = grid_.triangleCountOfPe(task.pe);
-      const GrPeEntry* entries = camera_bins_.entriesOf(task);
-      for (int i = 0; i < task.entry_count; ++i) {
-        const int s = task.first_entry + i;
-        const GrHit& h = slot_hits_[s];
-        if (h.prim == kSkipped) {
-          ++skipped;
-          continue;
-        }
-        tests += cost;
-        const GrPeEntry& e = entries[i];
-        BestPair& b = best[e.ray];
-        if (h.prim >= 0 && (e.t_enter < b.t_enter || (e.t_enter == b.t_enter && task.pe < b.pe)))
-          b = BestPair{e.t_enter, task.pe, s};
-      }
-    }
-  }
-  std::vector<int>* winners = diagnostics ? &diagnostics->winning_pe : nullptr;
-  if (winners) winners->assign(n, -1);
-#pragma omp parallel for schedule(static)
-  for (long long r = 0; r < (long long)n; ++r) {
-    BestPair b = thread_best_[0][r];
-    for (int t = 1; t < threads; ++t) {
-      const BestPair& c = thread_best_[t][r];
-      if (c.t_enter < b.t_enter || (c.t_enter == b.t_enter && c.pe < b.pe)) b = c;
-    }
-    hits[r] = b.slot >= 0 ? slot_hits_[b.slot] : GrHit{rays[r].tmax, -1, 0.0f, 0.0f};
-    if (winners) (*winners)[r] = b.slot >= 0 ? b.pe : -1;
-  }
-  if (!diagnostics) list_length_known_ = false;
   if (diagnostics) {
     diagnostics->tests.assign(n, 0);
+    diagnostics->winning_pe.assign(n, -1);
     diagnostics->list_length.assign(n, 0);
-    for (const GrPeTask& task : tasks)
-      for (int i = 0; i < task.entry_count; ++i) {
-        const int s = task.first_entry + i;
-        int ray = camera_bins_.entriesOf(task)[i].ray;
-        ++diagnostics->list_length[ray];
-        if (slot_hits_[s].prim != kSkipped)
-          diagnostics->tests[ray] += grid_.triangleCountOfPe(task.pe);
+  }
+  bundle_best_.resize(slots);
+  const int threads = omp_get_max_threads();
+  thread_pe_pairs_.resize(threads);
+  uint64_t tests = 0, skipped = 0, pairs = 0;
+  const auto& tasks = bundles.tasks;
+#pragma omp parallel num_threads(threads) reduction(+ : tests, skipped, pairs)
+  {
+    const int me = omp_get_thread_num(), count = omp_get_num_threads();
+    std::vector<int>& pe_pairs = thread_pe_pairs_[me];
+    pe_pairs.assign(grid_.peCount(), 0);
+    const size_t chunk = (slots / kBundleLanes + count - 1) / count * kBundleLanes;
+    const long long lo = (long long)std::min(slots, size_t(me) * chunk);
+    const long long hi = (long long)std::min(slots, size_t(lo) + chunk);
+    for (long long b = lo; b < hi; ++b) bundle_best_[b] = BundleBest{INFINITY, INT_MAX, -1, -1};
+    for (const GrBundleTask& task : tasks) {
+      const long long first = std::max<long long>(task.first_ray, lo);
+      const long long last = std::min<long long>(task.first_ray + task.ray_count, hi);
+      if (first >= last) continue;
+      const int cost = grid_.triangleCountOfPe(task.pe);
+      for (int p = int(first - task.first_ray) / kBundleLanes;
+           p * kBundleLanes < last - task.first_ray; ++p) {
+        const long long base = task.first_ray + p * kBundleLanes;
+        // The lanes of this packet inside [first, last).
+        int in_range = 0xFFFF;
+        if (base < first) in_range &= 0xFFFF << int(first - base);
+        if (base + kBundleLanes > last) in_range &= 0xFFFF >> int(base + kBundleLanes - last);
+        const GrPacketMasks& m = masks[task.out_first / kBundleLanes + p];
+        const int pierced = m.pierced & in_range, tested = pierced & ~m.skipped;
+        if (!pierced) continue;
+        pairs += popcount(pierced);
+        skipped += popcount(pierced & m.skipped);
+        tests += uint64_t(popcount(tested)) * cost;
+        pe_pairs[task.pe] += popcount(pierced);
+        if (diagnostics)
+          for (int bits = pierced; bits; bits &= bits - 1) {
+            const int k = __builtin_ctz(unsigned(bits));
+            const int ray = bundles.ray_of[base + k];
+            ++diagnostics->list_length[ray];
+            if (tested & (1 << k)) diagnostics->tests[ray] += cost;
+          }
+        const int out = task.out_first + p * kBundleLanes;
+        for (int bits = m.hit & in_range; bits; bits &= bits - 1) {
+          const int k = __builtin_ctz(unsigned(bits));
+          BundleBest& best = bundle_best_[base + k];
+          const float t = out_t[out + k];
+          const int prim = out_prim[out + k];
+          if (t < best.t || (t == best.t && (prim < best.prim || (prim == best.prim && task.pe < best.pe))))
+            best = BundleBest{t, prim, out + k, task.pe};
+        }
       }
+    }
+  }
+#pragma omp parallel for schedule(static)
+  for (long long b = 0; b < (long long)slots; ++b) {
+    const int r = bundles.ray_of[b];
+    if (r < 0) continue;
+    const BundleBest& best = bundle_best_[b];
+    hits[r] = best.lane >= 0 ? GrHit{best.t, best.prim, out_u[best.lane], out_v[best.lane]}
+                             : GrHit{rays[r].tmax, -1, 0.0f, 0.0f};
+    if (diagnostics) diagnostics->winning_pe[r] = best.pe;
+  }
+  if (masks) {
+    rt_.queue().enqueueUnmapMemObject(masks_.get(), const_cast<GrPacketMasks*>(masks));
+    rt_.queue().enqueueUnmapMemObject(out_t_.get(), const_cast<float*>(out_t));
+    rt_.queue().enqueueUnmapMemObject(out_prim_.get(), const_cast<int*>(out_prim));
+    rt_.queue().enqueueUnmapMemObject(out_u_.get(), const_cast<float*>(out_u));
+    rt_.queue().enqueueUnmapMemObject(out_v_.get(), const_cast<float*>(out_v));
+  }
+  if (diagnostics) {
+    list_length_known_ = true;
     for (int length : diagnostics->list_length)
       max_list_length_ = std::max<uint64_t>(max_list_length_, length);
+  } else {
+    list_length_known_ = false;
   }
-  finishBatch(camera_bins_.pairs_per_pe, n, tests, entry_count, skipped);
+  std::vector<int>& pe_pairs = thread_pe_pairs_[0];
+  for (size_t t = 1; t < thread_pe_pairs_.size(); ++t)
+    for (int pe = 0; pe < grid_.peCount(); ++pe) pe_pairs[pe] += thread_pe_pairs_[t][pe];
+  finishBatch(pe_pairs, n, tests, pairs, skipped);
   counters_.reduce_ms += clock.ms();
 }
 
 }  // namespace gridrt
+

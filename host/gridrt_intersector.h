@@ -2,11 +2,12 @@
 // PE task on the device (phase 1: one in-voxel hit per ray and PE), and the phase-2
 // reduction on the host (the first PE in a ray's list holding a hit wins).
 #pragma once
-#include "camera_binning.h"
+#include "camera_bundles.h"
 #include "cl_runtime.h"
 #include "device_buffer.h"
 #include "intersector.h"
 #include "pe_binning.h"
+#include "ray_bundles.h"
 #include "traversal_lists.h"
 #include "uniform_grid.h"
 
@@ -27,8 +28,9 @@ class GridRtIntersector : public Intersector {
   std::string name() const override { return interrupt_ ? "gridrt-interrupt" : "gridrt"; }
   void intersect(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                  RayDiagnostics* diagnostics) override;
-  // Primary rays binned through voxel footprints (camera_binning.h) instead of walking
-  // the 3D-DDA per ray; the same pairs, so the same hits.
+  // Primary rays as camera bundles (camera_bundles.h): PEs receive runs of pixel tiles
+  // through their voxels' screen footprints instead of per-ray 3D-DDA lists; the kernel
+  // keeps the same pairs, so the same hits.
   void intersectPrimary(const PinholeView& view, const std::vector<GrRay>& rays,
                         std::vector<GrHit>& hits, RayDiagnostics* diagnostics) override;
 
@@ -70,13 +72,30 @@ class GridRtIntersector : public Intersector {
   // the PE load and the counters.
   void finishBatch(const std::vector<int>& pairs_per_pe, size_t rays, uint64_t tests,
                    size_t pairs, uint64_t skipped);
-  CameraBins camera_bins_;
-  struct BestPair {
-    float t_enter;
+  // The bundle path: rays in bundle order, one work-group per task, then phase 2 over
+  // the packets' masks (the first PE of a ray's list with a hit holds its smallest t).
+  void intersectBundles(const std::vector<GrRay>& rays, const RayBundles& bundles,
+                        HitMode mode, std::vector<GrHit>& hits, RayDiagnostics* diagnostics);
+  RayBundles camera_bundles_;
+  std::vector<std::vector<TileRun>> tile_runs_;
+  // Phase 2's per-ray best, in bundle order.
+  struct BundleBest {
+    float t;
+    int prim;
+    int lane;  // result lane that holds it
     int pe;
-    int slot;
   };
-  std::vector<std::vector<BestPair>> thread_best_;  // per thread, per ray (camera path)
+  std::vector<BundleBest> bundle_best_;
+  std::vector<std::vector<int>> thread_pe_pairs_;  // per thread, pairs per PE
+  DeviceBuffer<int> voxel_of_pe_{"the PE voxels", CL_MEM_READ_ONLY};
+  DeviceBuffer<float> planes_{"the ray bundle", CL_MEM_READ_ONLY};
+  DeviceBuffer<GrBundleTask> bundle_tasks_{"the bundle tasks", CL_MEM_READ_ONLY};
+  DeviceBuffer<float> out_t_{"the per-PE hit distances", CL_MEM_WRITE_ONLY};
+  DeviceBuffer<int> out_prim_{"the per-PE hit triangles", CL_MEM_WRITE_ONLY};
+  DeviceBuffer<float> out_u_{"the per-PE hit u", CL_MEM_WRITE_ONLY};
+  DeviceBuffer<float> out_v_{"the per-PE hit v", CL_MEM_WRITE_ONLY};
+  DeviceBuffer<GrPacketMasks> masks_{"the packet masks", CL_MEM_WRITE_ONLY};
+  cl::Kernel bundle_kernel_;
   DeviceBuffer<int> pe_tri_begin_{"the PE offsets", CL_MEM_READ_ONLY};
   DeviceBuffer<GrTriangle> pe_triangles_{"the PE triangles", CL_MEM_READ_ONLY};
   DeviceBuffer<GrRay> rays_{"the ray batch", CL_MEM_READ_ONLY};

@@ -1,6 +1,6 @@
 /* Struct layouts shared by the host (C++) and the kernels (OpenCL C 1.2).
- * One truth: the host includes this file and pins every layout with static_assert
- * (host/shared_layout.h). No float3 (16 bytes in OpenCL C): scalars only. */
+ * One truth: both include this file; the host pins every size with static_assert (end of
+ * file). No float3 (16 bytes in OpenCL C): scalars only. */
 #ifndef GRIDRT_TYPES_H
 #define GRIDRT_TYPES_H
 
@@ -59,5 +59,47 @@ typedef struct {
   int entry_count;
   int slot_base;
 } GrPeTask; /* 16 bytes */
+
+/* Ray bundles (host/ray_bundles.h): rays reordered so that rays close in direction sit
+ * next to each other, stored as planes (structure of arrays), tested 16 at a time. A task
+ * is one work-group's share of one PE: the bundle-order rays [first_ray, first_ray +
+ * ray_count), whose 16-ray packets write their results from lane out_first (a multiple
+ * of 16) and their masks from packet out_first / 16. */
+typedef struct {
+  int pe;
+  int first_ray;
+  int ray_count;
+  int out_first;
+} GrBundleTask; /* 16 bytes */
+
+/* What one packet of one task did, one bit per lane. */
+typedef struct {
+  int pierced; /* the ray pierces the PE's voxel (the pair is in its traversal list) */
+  int hit;     /* ... and has a hit inside it (t, prim, u, v written for this lane) */
+  int skipped; /* ... and was skipped by the interrupt (an earlier PE had a hit) */
+  int pad;
+} GrPacketMasks; /* 16 bytes */
+
+/* The planes of a bundle buffer, each `stride` floats long. */
+#define GR_PLANE_OX 0
+#define GR_PLANE_OY 1
+#define GR_PLANE_OZ 2
+#define GR_PLANE_DX 3
+#define GR_PLANE_DY 4
+#define GR_PLANE_DZ 5
+#define GR_PLANE_TMIN 6
+#define GR_PLANE_TMAX 7
+#define GR_PLANES 8
+
+#ifndef __OPENCL_C_VERSION__
+static_assert(sizeof(GrRay) == 32, "GrRay layout");
+static_assert(sizeof(GrTriangle) == 48, "GrTriangle layout");
+static_assert(sizeof(GrHit) == 16, "GrHit layout");
+static_assert(sizeof(GrGridInfo) == 48, "GrGridInfo layout");
+static_assert(sizeof(GrPeEntry) == 16, "GrPeEntry layout");
+static_assert(sizeof(GrPeTask) == 16, "GrPeTask layout");
+static_assert(sizeof(GrBundleTask) == 16, "GrBundleTask layout");
+static_assert(sizeof(GrPacketMasks) == 16, "GrPacketMasks layout");
+#endif
 
 #endif

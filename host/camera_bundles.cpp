@@ -1,0 +1,121 @@
+#include "camera_bundles.h"
+
+#include <algorithm>
+#include <cmath>
+#include <omp.h>
+
+namespace gridrt {
+
+static_assert(kTileSize * kTileSize == kBundleLanes, "a tile is one packet");
+
+namespace {
+
+// The box's corners in continuous pixel coordinates (pixel (i, j)'s centre ray at (i, j));
+// false when a corner lies at or behind the camera plane (the footprint is unbounded).
+bool projectCorners(const PinholeView& v, const glm::vec3& lo, const glm::vec3& hi,
+                    glm::vec2 (&corners)[8]) {
+  for (int c = 0; c < 8; ++c) {
+    glm::vec3 corner(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+    glm::vec4 p = v.world_to_camera * glm::vec4(corner, 1.0f);
+    if (!(p.z < 0.0f)) return false;
+    float x = p.x / (-p.z) / (v.tan_half * v.aspect), y = p.y / (-p.z) / v.tan_half;
+    corners[c] = glm::vec2((x + 1.0f) * 0.5f * float(v.width) - 0.5f,
+                           (1.0f - y) * 0.5f * float(v.height) - 0.5f);
+  }
+  return true;
+}
+
+// The 12 edges of a box as corner pairs (corner bits: 1 = x, 2 = y, 4 = z).
+constexpr int kBoxEdges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                                  {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+
+// The x extent of the projected box (the convex hull of its corners, whose boundary is
+// made of projected edges) inside the rows a <= y <= b: the corners in the band and the
+// points where edges cross its two lines. Empty (lo > hi) if the hull misses the band.
+void extentInBand(const glm::vec2 (&c)[8], float a, float b, float& lo, float& hi) {
+  lo = INFINITY;
+  hi = -INFINITY;
+  for (const glm::vec2& p : c)
+    if (p.y >= a && p.y <= b) {
+      lo = std::min(lo, p.x);
+      hi = std::max(hi, p.x);
+    }
+  for (const auto& e : kBoxEdges) {
+    const glm::vec2 &p = c[e[0]], &q = c[e[1]];
+    for (float y : {a, b})
+      if ((p.y - y) * (q.y - y) < 0.0f) {
+        float x = p.x + (q.x - p.x) * ((y - p.y) / (q.y - p.y));
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+      }
+  }
+}
+
+}  // namespace
+
+void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundles& bundles,
+                      std::vector<std::vector<TileRun>>& thread_runs) {
+  const GrGridInfo& g = grid.info;
+  const PixelWindow& win = view.window;
+  const int ww = win.width(), wh = win.height();
+  const int tiles_x = (ww + kTileSize - 1) / kTileSize, tiles_y = (wh + kTileSize - 1) / kTileSize;
+  const size_t slots = size_t(tiles_x) * tiles_y * kBundleLanes;
+  bundles.ray_of.resize(slots);
+#pragma omp parallel for schedule(static)
+  for (long long b = 0; b < (long long)slots; ++b) {
+    int tile = int(b / kBundleLanes), lane = int(b % kBundleLanes);
+    int x = (tile % tiles_x) * kTileSize + lane % kTileSize;
+    int y = (tile / tiles_x) * kTileSize + lane / kTileSize;
+    bundles.ray_of[b] = x < ww && y < wh ? y * ww + x : -1;
+  }
+
+  // Per PE and tile row, the run of tiles whose pixel centres may see the voxel: the
+  // projected box's extent in the row band, one pixel wider on every side against the
+  // rounding of the projection (its error is a few ulps of the pixel coordinates).
+  const int pes = grid.peCount();
+  const int threads = omp_get_max_threads();
+  thread_runs.resize(threads);
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<TileRun>& runs = thread_runs[omp_get_thread_num()];
+    runs.clear();
+#pragma omp for schedule(static)
+    for (int pe = 0; pe < pes; ++pe) {
+      glm::ivec3 v = grid.voxelCoords(grid.voxel_of_pe[pe]);
+      glm::vec3 lo(g.minx + float(v.x) * g.cellx, g.miny + float(v.y) * g.celly,
+                   g.minz + float(v.z) * g.cellz);
+      glm::vec3 hi(g.minx + float(v.x + 1) * g.cellx, g.miny + float(v.y + 1) * g.celly,
+                   g.minz + float(v.z + 1) * g.cellz);
+      glm::vec2 corners[8];
+      if (!projectCorners(view, lo, hi, corners)) {
+        for (int ty = 0; ty < tiles_y; ++ty) runs.push_back(TileRun{pe, ty, 0, tiles_x});
+        continue;
+      }
+      float ymin = INFINITY, ymax = -INFINITY;
+      for (const glm::vec2& c : corners) {
+        ymin = std::min(ymin, c.y);
+        ymax = std::max(ymax, c.y);
+      }
+      // Tile rows in reach (float clamps first: a corner near the camera plane projects
+      // far outside int range).
+      auto clampTo = [](float x, int a, int b) { return int(std::max(float(a), std::min(float(b), x))); };
+      const int ty0 = clampTo(std::floor((ymin - 1.0f - float(win.y0)) / kTileSize), 0, tiles_y);
+      const int ty1 = clampTo(std::floor((ymax + 1.0f - float(win.y0)) / kTileSize) + 1.0f, 0, tiles_y);
+      for (int ty = ty0; ty < ty1; ++ty) {
+        float a = float(win.y0 + ty * kTileSize) - 1.0f, b = a + float(kTileSize - 1) + 2.0f;
+        float x0, x1;
+        extentInBand(corners, a, b, x0, x1);
+        if (!(x0 <= x1)) continue;
+        int tx0 = clampTo(std::floor((x0 - 1.0f - float(win.x0)) / kTileSize), 0, tiles_x);
+        int tx1 = clampTo(std::floor((x1 + 1.0f - float(win.x0)) / kTileSize) + 1.0f, 0, tiles_x);
+        if (tx0 < tx1) runs.push_back(TileRun{pe, ty, tx0, tx1});
+      }
+    }
+  }
+  bundles.clearTasks();
+  for (const std::vector<TileRun>& runs : thread_runs)
+    for (const TileRun& r : runs)
+      bundles.addRange(r.pe, (r.ty * tiles_x + r.tx0) * kBundleLanes, (r.tx1 - r.tx0) * kBundleLanes);
+}
+
+}  // namespace gridrt

@@ -1,0 +1,26 @@
+// Primary rays of a pinhole camera as ray bundles (ray_bundles.h): the pixels of the
+// view's window in square tiles of kTileSize x kTileSize (one 16-ray packet each), tiles
+// row by row. A PE receives, for each tile row its voxel's screen footprint touches, the
+// run of tiles the footprint covers; the kernel's slab test keeps the rays that really
+// pierce the voxel, which are exactly the pairs of the rays' traversal lists.
+#pragma once
+#include <vector>
+
+#include "pinhole_view.h"
+#include "ray_bundles.h"
+#include "uniform_grid.h"
+
+namespace gridrt {
+
+constexpr int kTileSize = 4;  // kTileSize^2 == kBundleLanes
+
+// One PE's tiles [tx0, tx1) of tile row ty.
+struct TileRun {
+  int pe, ty, tx0, tx1;
+};
+
+// `thread_runs` is scratch (each thread's runs), reused between calls.
+void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundles& bundles,
+                      std::vector<std::vector<TileRun>>& thread_runs);
+
+}  // namespace gridrt

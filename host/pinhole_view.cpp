@@ -1,0 +1,18 @@
+#include "pinhole_view.h"
+
+#include <cmath>
+
+namespace gridrt {
+
+PinholeView PinholeView::of(const Camera& camera, int width, int height, PixelWindow window) {
+  PinholeView v;
+  v.world_to_camera = glm::inverse(camera.world);
+  v.tan_half = std::tan(camera.yfov * 0.5f);
+  v.aspect = camera.aspect > 0.0f ? camera.aspect : float(width) / float(height);
+  v.width = width;
+  v.height = height;
+  v.window = window.whole() ? PixelWindow{0, 0, width, height} : window;
+  return v;
+}
+
+}  // namespace gridrt

@@ -1,0 +1,130 @@
+/* GridRT processing elements over ray bundles (host/ray_bundles.h): one work-group runs
+ * one task of one PE (a non-empty voxel). The task's rays are consecutive in bundle order
+ * and stored as planes, so a work-item loads 16 of them with one vload16 per plane and
+ * tests them in float16 lanes against the voxel's triangles.
+ *
+ * The work-item decides itself which lanes pierce the voxel: the slab test with the
+ * 3D-DDA's plane distances ((min + k * cell - o) * (1/d)), so two voxels that share a
+ * plane share its distance bit for bit and every point of a ray inside the grid lies in
+ * the [t_enter, t_exit] of some voxel it pierces. Phase 1 of the reduction: each pierced
+ * lane keeps its closest hit INSIDE the voxel (t_enter <= t <= t_exit), so the first PE of
+ * a ray's traversal list (entry order) holding a hit also holds the smallest t; phase 2 on
+ * the host picks it.
+ *
+ * INTERRUPT emulates the paper's interrupt chain as gridrt_pe.cl does: a lane is skipped
+ * when first_hit_key (per bundle ray, the int bits of the smallest t_enter of a PE with a
+ * hit) is below its own t_enter. */
+#pragma OPENCL FP_CONTRACT OFF
+#include "gridrt_types.h"
+#include "ray_triangle16.h"
+
+#define LANES 16
+
+/* The ray interval inside [lo, hi] on one axis, narrowing [t0, t1]; a zero direction is
+ * inside the slab for every t or for none. fmin/fmax: a NaN product never decides. */
+inline void gr_slab16(float16 o, float16 d, float16 inv, float lo, float hi, float16* t0,
+                      float16* t1) {
+  float16 a = (lo - o) * inv, b = (hi - o) * inv;
+  int16 zero = d == 0.0f;
+  int16 outside = (o < lo) | (o > hi);
+  *t0 = select(fmax(*t0, fmin(a, b)), select(*t0, (float16)INFINITY, outside), zero);
+  *t1 = select(fmin(*t1, fmax(a, b)), *t1, zero);
+}
+
+/* The lanes of a mask (-1 per lane) as 16 bits, lane k in bit k. OpenCL C 1.2 has no
+ * horizontal reduction: the disjoint bits are folded by halves. */
+inline int gr_lane_bits16(int16 mask) {
+  int16 b = mask & ((int16)1 << (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
+  int8 b8 = b.lo | b.hi;
+  int4 b4 = b8.lo | b8.hi;
+  int2 b2 = b4.lo | b4.hi;
+  return b2.x | b2.y;
+}
+
+__kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1)))
+void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* planes, int stride,
+                   GrGridInfo grid, __global const int* voxel_of_pe,
+                   __global const int* pe_tri_begin, __global const GrTriangle* pe_tris,
+                   __global float* out_t, __global int* out_prim, __global float* out_u,
+                   __global float* out_v, __global GrPacketMasks* masks,
+                   __global int* first_hit_key, int any_hit, int interrupt) {
+  const GrBundleTask task = tasks[get_group_id(0)];
+  const int voxel = voxel_of_pe[task.pe];
+  const int vx = voxel % grid.nx, vy = (voxel / grid.nx) % grid.ny, vz = voxel / (grid.nx * grid.ny);
+  const float lox = grid.minx + (float)vx * grid.cellx, hix = grid.minx + (float)(vx + 1) * grid.cellx;
+  const float loy = grid.miny + (float)vy * grid.celly, hiy = grid.miny + (float)(vy + 1) * grid.celly;
+  const float loz = grid.minz + (float)vz * grid.cellz, hiz = grid.minz + (float)(vz + 1) * grid.cellz;
+  const int begin = pe_tri_begin[task.pe], end = pe_tri_begin[task.pe + 1];
+  const int packets = (task.ray_count + LANES - 1) / LANES;
+  const int16 lane = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+
+  for (int p = get_local_id(0); p < packets; p += GR_PE_LOCAL_SIZE) {
+    const int first = task.first_ray + p * LANES;
+    const int out = task.out_first + p * LANES;
+    /* Lanes past the task's end read the next rays of the bundle (or its padding, which
+     * never pierces) and are masked off. */
+    int16 in_task = lane < (int16)(task.ray_count - p * LANES);
+    GrRays16 r;
+    r.ox = vload16(0, planes + GR_PLANE_OX * stride + first);
+    r.oy = vload16(0, planes + GR_PLANE_OY * stride + first);
+    r.oz = vload16(0, planes + GR_PLANE_OZ * stride + first);
+    r.dx = vload16(0, planes + GR_PLANE_DX * stride + first);
+    r.dy = vload16(0, planes + GR_PLANE_DY * stride + first);
+    r.dz = vload16(0, planes + GR_PLANE_DZ * stride + first);
+    float16 tmin = vload16(0, planes + GR_PLANE_TMIN * stride + first);
+    float16 tmax = vload16(0, planes + GR_PLANE_TMAX * stride + first);
+
+    float16 t_enter = tmin, t_exit = tmax;
+    gr_slab16(r.ox, r.dx, 1.0f / r.dx, lox, hix, &t_enter, &t_exit);
+    gr_slab16(r.oy, r.dy, 1.0f / r.dy, loy, hiy, &t_enter, &t_exit);
+    gr_slab16(r.oz, r.dz, 1.0f / r.dz, loz, hiz, &t_enter, &t_exit);
+    int16 pierced = in_task & (t_enter <= t_exit);
+    int16 active = pierced;
+    int16 skipped = (int16)0;
+    if (interrupt) {
+      int16 key = vload16(0, first_hit_key + first);
+      skipped = pierced & (key < as_int16(t_enter));
+      active = pierced & ~skipped;
+    }
+
+    GrPacketMasks m;
+    m.pierced = 0;
+    m.hit = 0;
+    m.skipped = 0;
+    m.pad = 0;
+    if (any(active)) {
+      float16 best_t = tmax, best_u = 0.0f, best_v = 0.0f;
+      int16 best_prim = -1;
+      for (int i = begin; i < end; ++i) {
+        GrTriangle tri = pe_tris[i];
+        float16 t, u, v;
+        int16 hit = gr_intersect16(&r, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z,
+                                   tri.e2x, tri.e2y, tri.e2z, &t, &u, &v);
+        /* The in-voxel rule: without it a triangle spanning voxels could win in a PE
+         * that comes before the voxel where its hit really lies. */
+        hit &= active & (t > tmin) & (t < best_t) & (t >= t_enter) & (t <= t_exit);
+        best_t = select(best_t, t, hit);
+        best_u = select(best_u, u, hit);
+        best_v = select(best_v, v, hit);
+        best_prim = select(best_prim, (int16)tri.prim, hit);
+        if (any_hit && all((best_prim >= 0) | (active == 0))) break;
+      }
+      m.hit = gr_lane_bits16(best_prim >= 0);
+      if (m.hit) {
+        vstore16(best_t, 0, out_t + out);
+        vstore16(best_prim, 0, out_prim + out);
+        vstore16(best_u, 0, out_u + out);
+        vstore16(best_v, 0, out_v + out);
+        if (interrupt) {
+          int keys[LANES];
+          vstore16(as_int16(t_enter), 0, keys);
+          for (int k = 0; k < LANES; ++k)
+            if (m.hit & (1 << k)) atomic_min(&first_hit_key[first + k], keys[k]);
+        }
+      }
+    }
+    m.pierced = gr_lane_bits16(pierced);
+    m.skipped = gr_lane_bits16(skipped);
+    masks[out / LANES] = m;
+  }
+}
