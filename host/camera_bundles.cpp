@@ -54,7 +54,10 @@ void extentInBand(const glm::vec2 (&c)[8], float a, float b, float& lo, float& h
 }  // namespace
 
 void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundles& bundles,
-                      std::vector<std::vector<TileRun>>& thread_runs) {
+                      CameraBundleScratch& scratch) {
+  auto& thread_runs = scratch.thread_runs;
+  auto& row_start = scratch.row_start;
+  auto& sorted = scratch.sorted;
   const GrGridInfo& g = grid.info;
   const PixelWindow& win = view.window;
   const int ww = win.width(), wh = win.height();
@@ -112,10 +115,18 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
       }
     }
   }
-  bundles.clearTasks();
+  // Tasks in tile-row order (PE order within a row): consecutive work-groups read
+  // neighbouring rays, and phase 2 updates one band of the image at a time.
+  row_start.assign(tiles_y + 1, 0);
   for (const std::vector<TileRun>& runs : thread_runs)
-    for (const TileRun& r : runs)
-      bundles.addRange(r.pe, (r.ty * tiles_x + r.tx0) * kBundleLanes, (r.tx1 - r.tx0) * kBundleLanes);
+    for (const TileRun& r : runs) ++row_start[r.ty + 1];
+  for (int ty = 0; ty < tiles_y; ++ty) row_start[ty + 1] += row_start[ty];
+  sorted.resize(row_start[tiles_y]);
+  for (const std::vector<TileRun>& runs : thread_runs)
+    for (const TileRun& r : runs) sorted[row_start[r.ty]++] = r;
+  bundles.clearTasks();
+  for (const TileRun& r : sorted)
+    bundles.addRange(r.pe, (r.ty * tiles_x + r.tx0) * kBundleLanes, (r.tx1 - r.tx0) * kBundleLanes);
 }
 
 }  // namespace gridrt

@@ -19,8 +19,14 @@ struct TileRun {
   int pe, ty, tx0, tx1;
 };
 
-// `thread_runs` is scratch (each thread's runs), reused between calls.
+// Memory reused between calls.
+struct CameraBundleScratch {
+  std::vector<std::vector<TileRun>> thread_runs;  // each thread's runs
+  std::vector<size_t> row_start;                  // counting sort by tile row
+  std::vector<TileRun> sorted;
+};
+
 void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundles& bundles,
-                      std::vector<std::vector<TileRun>>& thread_runs);
+                      CameraBundleScratch& scratch);
 
 }  // namespace gridrt

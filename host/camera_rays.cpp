@@ -36,25 +36,6 @@ CameraRayGenerator::CameraRayGenerator(const Camera& camera, int width, int heig
       tan_half_(std::tan(camera.yfov * 0.5f)),
       origin_(camera.world[3]) {}
 
-GrRay CameraRayGenerator::operator()(int i, int j, float sx, float sy) const {
-  float x = 2.0f * (float(i) + sx) / width_ - 1.0f;
-  float y = 1.0f - 2.0f * (float(j) + sy) / height_;
-  glm::vec3 origin, direction;
-  if (camera_.orthographic) {
-    // ymag is the half height; the image aspect sets the half width.
-    glm::vec4 o = camera_.world * glm::vec4(x * camera_.ymag * aspect_, y * camera_.ymag, 0.0f, 1.0f);
-    origin = glm::vec3(o);
-    direction = glm::vec3(camera_.world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
-  } else {
-    glm::vec3 d(x * tan_half_ * aspect_, y * tan_half_, -1.0f);
-    origin = origin_;
-    direction = glm::vec3(camera_.world * glm::vec4(glm::normalize(d), 0.0f));
-  }
-  direction = glm::normalize(direction);
-  return GrRay{origin.x, origin.y, origin.z, 0.0f, direction.x, direction.y, direction.z,
-               std::numeric_limits<float>::infinity()};
-}
-
 GrRay cameraRay(const Camera& camera, int width, int height, int i, int j, float sx, float sy) {
   return CameraRayGenerator(camera, width, height)(i, j, sx, sy);
 }

@@ -4,6 +4,8 @@
 // world by the camera's world matrix; origin the camera's world position.
 #pragma once
 #include <cstdint>
+#include <glm/glm.hpp>
+#include <limits>
 #include <vector>
 
 #include "bounds.h"
@@ -31,6 +33,26 @@ class CameraRayGenerator {
   float width_, height_, aspect_, tan_half_;
   glm::vec3 origin_;
 };
+
+// Inline: the renderer calls it once per pixel.
+inline GrRay CameraRayGenerator::operator()(int i, int j, float sx, float sy) const {
+  float x = 2.0f * (float(i) + sx) / width_ - 1.0f;
+  float y = 1.0f - 2.0f * (float(j) + sy) / height_;
+  glm::vec3 origin, direction;
+  if (camera_.orthographic) {
+    // ymag is the half height; the image aspect sets the half width.
+    glm::vec4 o = camera_.world * glm::vec4(x * camera_.ymag * aspect_, y * camera_.ymag, 0.0f, 1.0f);
+    origin = glm::vec3(o);
+    direction = glm::vec3(camera_.world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
+  } else {
+    glm::vec3 d(x * tan_half_ * aspect_, y * tan_half_, -1.0f);
+    origin = origin_;
+    direction = glm::vec3(camera_.world * glm::vec4(glm::normalize(d), 0.0f));
+  }
+  direction = glm::normalize(direction);
+  return GrRay{origin.x, origin.y, origin.z, 0.0f, direction.x, direction.y, direction.z,
+               std::numeric_limits<float>::infinity()};
+}
 
 // One ray, for callers that need a few (same result as CameraRayGenerator).
 GrRay cameraRay(const Camera& camera, int width, int height, int i, int j, float sx, float sy);

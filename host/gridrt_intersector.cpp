@@ -137,7 +137,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
 void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vector<GrRay>& rays,
                                          std::vector<GrHit>& hits, RayDiagnostics* diagnostics) {
   Stopwatch clock;
-  bundleCameraRays(grid_, view, camera_bundles_, tile_runs_);
+  bundleCameraRays(grid_, view, camera_bundles_, camera_scratch_);
   counters_.lists_ms += clock.ms();
   intersectBundles(rays, camera_bundles_, HitMode::Closest, hits, diagnostics);
 }
@@ -165,23 +165,39 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   const size_t stride = slots + kBundleLanes;
   Stopwatch clock;
 
-  // Phase 1: the rays in bundle order, as planes, straight into the device buffer.
+  // Phase 1: the rays in bundle order, as planes, straight into the device buffer: the
+  // directions always (a zero direction marks padding); origins and intervals only when
+  // the rays do not all share those of the first ray (camera rays do).
   planes_.reserve(rt_, GR_PLANES * stride);
   float* planes = mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
                                    GR_PLANES * stride);
-#pragma omp parallel for schedule(static)
+  const GrRay common = n ? rays[0] : GrRay{};
+  auto sameStart = [&](const GrRay& r) {
+    return r.ox == common.ox && r.oy == common.oy && r.oz == common.oz &&
+           r.tmin == common.tmin && r.tmax == common.tmax;
+  };
+  int differing = 0;
+#pragma omp parallel for schedule(static) reduction(+ : differing)
   for (long long b = 0; b < (long long)stride; ++b) {
-    int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
-    // Padding: an empty interval (tmin > tmax) never pierces a voxel.
-    GrRay ray = r >= 0 ? rays[r] : GrRay{0, 0, 0, 1.0f, 0, 0, 0, 0.0f};
-    planes[GR_PLANE_OX * stride + b] = ray.ox;
-    planes[GR_PLANE_OY * stride + b] = ray.oy;
-    planes[GR_PLANE_OZ * stride + b] = ray.oz;
-    planes[GR_PLANE_DX * stride + b] = ray.dx;
-    planes[GR_PLANE_DY * stride + b] = ray.dy;
-    planes[GR_PLANE_DZ * stride + b] = ray.dz;
-    planes[GR_PLANE_TMIN * stride + b] = ray.tmin;
-    planes[GR_PLANE_TMAX * stride + b] = ray.tmax;
+    const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
+    const GrRay ray = r >= 0 ? rays[r] : common;
+    planes[GR_PLANE_DX * stride + b] = r >= 0 ? ray.dx : 0.0f;
+    planes[GR_PLANE_DY * stride + b] = r >= 0 ? ray.dy : 0.0f;
+    planes[GR_PLANE_DZ * stride + b] = r >= 0 ? ray.dz : 0.0f;
+    differing += !sameStart(ray);
+  }
+  const bool common_origin = differing == 0;
+  if (!common_origin) {
+#pragma omp parallel for schedule(static)
+    for (long long b = 0; b < (long long)stride; ++b) {
+      const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
+      const GrRay ray = r >= 0 ? rays[r] : common;
+      planes[GR_PLANE_OX * stride + b] = ray.ox;
+      planes[GR_PLANE_OY * stride + b] = ray.oy;
+      planes[GR_PLANE_OZ * stride + b] = ray.oz;
+      planes[GR_PLANE_TMIN * stride + b] = ray.tmin;
+      planes[GR_PLANE_TMAX * stride + b] = ray.tmax;
+    }
   }
   rt_.queue().enqueueUnmapMemObject(planes_.get(), planes);
   const size_t lanes = bundles.out_lanes, packets = lanes / kBundleLanes;
@@ -201,19 +217,22 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     cl::Kernel& k = bundle_kernel_;
     k.setArg(0, bundle_tasks_.get());
     k.setArg(1, planes_.get());
-    k.setArg(2, int(stride));
-    k.setArg(3, grid_.info);
-    k.setArg(4, voxel_of_pe_.get());
-    k.setArg(5, pe_tri_begin_.get());
-    k.setArg(6, pe_triangles_.get());
-    k.setArg(7, out_t_.get());
-    k.setArg(8, out_prim_.get());
-    k.setArg(9, out_u_.get());
-    k.setArg(10, out_v_.get());
-    k.setArg(11, masks_.get());
-    k.setArg(12, first_hit_key_.get());
-    k.setArg(13, mode == HitMode::AnyHit ? 1 : 0);
-    k.setArg(14, interrupt_ ? 1 : 0);
+    int arg = 2;
+    k.setArg(arg++, int(stride));
+    k.setArg(arg++, common_origin ? 1 : 0);
+    k.setArg(arg++, common);
+    k.setArg(arg++, grid_.info);
+    k.setArg(arg++, voxel_of_pe_.get());
+    k.setArg(arg++, pe_tri_begin_.get());
+    k.setArg(arg++, pe_triangles_.get());
+    k.setArg(arg++, out_t_.get());
+    k.setArg(arg++, out_prim_.get());
+    k.setArg(arg++, out_u_.get());
+    k.setArg(arg++, out_v_.get());
+    k.setArg(arg++, masks_.get());
+    k.setArg(arg++, first_hit_key_.get());
+    k.setArg(arg++, mode == HitMode::AnyHit ? 1 : 0);
+    k.setArg(arg++, interrupt_ ? 1 : 0);
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange,
                                      cl::NDRange(bundles.tasks.size() * kPeLocalSize),
                                      cl::NDRange(kPeLocalSize));
@@ -236,11 +255,11 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     diagnostics->winning_pe.assign(n, -1);
     diagnostics->list_length.assign(n, 0);
   }
-  bundle_best_.resize(slots);
   const int threads = omp_get_max_threads();
   thread_pe_pairs_.resize(threads);
   uint64_t tests = 0, skipped = 0, pairs = 0;
   const auto& tasks = bundles.tasks;
+  std::vector<int>* winners = diagnostics ? &diagnostics->winning_pe : nullptr;
 #pragma omp parallel num_threads(threads) reduction(+ : tests, skipped, pairs)
   {
     const int me = omp_get_thread_num(), count = omp_get_num_threads();
@@ -249,7 +268,11 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     const size_t chunk = (slots / kBundleLanes + count - 1) / count * kBundleLanes;
     const long long lo = (long long)std::min(slots, size_t(me) * chunk);
     const long long hi = (long long)std::min(slots, size_t(lo) + chunk);
-    for (long long b = lo; b < hi; ++b) bundle_best_[b] = BundleBest{INFINITY, INT_MAX, -1, -1};
+    // Bundle order maps to distinct rays, so the threads write disjoint hits.
+    for (long long b = lo; b < hi; ++b) {
+      const int r = bundles.ray_of[b];
+      if (r >= 0) hits[r] = GrHit{common_origin ? common.tmax : rays[r].tmax, -1, 0.0f, 0.0f};
+    }
     for (const GrBundleTask& task : tasks) {
       const long long first = std::max<long long>(task.first_ray, lo);
       const long long last = std::min<long long>(task.first_ray + task.ray_count, hi);
@@ -279,23 +302,20 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
         const int out = task.out_first + p * kBundleLanes;
         for (int bits = m.hit & in_range; bits; bits &= bits - 1) {
           const int k = __builtin_ctz(unsigned(bits));
-          BundleBest& best = bundle_best_[base + k];
+          GrHit& best = hits[bundles.ray_of[base + k]];
           const float t = out_t[out + k];
           const int prim = out_prim[out + k];
-          if (t < best.t || (t == best.t && (prim < best.prim || (prim == best.prim && task.pe < best.pe))))
-            best = BundleBest{t, prim, out + k, task.pe};
+          // Equal (t, prim) from two PEs (a hit on their shared boundary) is the same
+          // hit; the lower PE is named the winner.
+          const bool tie = t == best.t && prim == best.prim;
+          if (t < best.t || (t == best.t && prim < best.prim) ||
+              (tie && winners && task.pe < (*winners)[bundles.ray_of[base + k]])) {
+            best = GrHit{t, prim, out_u[out + k], out_v[out + k]};
+            if (winners) (*winners)[bundles.ray_of[base + k]] = task.pe;
+          }
         }
       }
     }
-  }
-#pragma omp parallel for schedule(static)
-  for (long long b = 0; b < (long long)slots; ++b) {
-    const int r = bundles.ray_of[b];
-    if (r < 0) continue;
-    const BundleBest& best = bundle_best_[b];
-    hits[r] = best.lane >= 0 ? GrHit{best.t, best.prim, out_u[best.lane], out_v[best.lane]}
-                             : GrHit{rays[r].tmax, -1, 0.0f, 0.0f};
-    if (diagnostics) diagnostics->winning_pe[r] = best.pe;
   }
   if (masks) {
     rt_.queue().enqueueUnmapMemObject(masks_.get(), const_cast<GrPacketMasks*>(masks));

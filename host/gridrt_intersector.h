@@ -77,15 +77,7 @@ class GridRtIntersector : public Intersector {
   void intersectBundles(const std::vector<GrRay>& rays, const RayBundles& bundles,
                         HitMode mode, std::vector<GrHit>& hits, RayDiagnostics* diagnostics);
   RayBundles camera_bundles_;
-  std::vector<std::vector<TileRun>> tile_runs_;
-  // Phase 2's per-ray best, in bundle order.
-  struct BundleBest {
-    float t;
-    int prim;
-    int lane;  // result lane that holds it
-    int pe;
-  };
-  std::vector<BundleBest> bundle_best_;
+  CameraBundleScratch camera_scratch_;
   std::vector<std::vector<int>> thread_pe_pairs_;  // per thread, pairs per PE
   DeviceBuffer<int> voxel_of_pe_{"the PE voxels", CL_MEM_READ_ONLY};
   DeviceBuffer<float> planes_{"the ray bundle", CL_MEM_READ_ONLY};

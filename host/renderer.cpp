@@ -105,17 +105,17 @@ void Renderer::tracePrimary(const PixelWindow& window, RayDiagnostics* diagnosti
   const int rows = std::max(1, int(kMaxBatchRays / size_t(w)));
   if (rows >= window.height()) {  // one batch: no copies
     PinholeView view = PinholeView::of(camera_, settings_.width, settings_.height, window);
-    intersector_.intersectPrimary(view, rays_, hits_, diagnostics);
+    intersector_.intersectPrimary(view, primary_rays_, hits_, diagnostics);
     ms += clock.ms();
     return;
   }
-  hits_.resize(rays_.size());
+  hits_.resize(primary_rays_.size());
   if (diagnostics) *diagnostics = RayDiagnostics{};
   RayDiagnostics part;
   for (int y = window.y0; y < window.y1; y += rows) {
     PixelWindow band{window.x0, y, window.x1, std::min(window.y1, y + rows)};
     size_t first = size_t(y - window.y0) * w, count = size_t(band.height()) * w;
-    batch_rays_.assign(rays_.begin() + first, rays_.begin() + first + count);
+    batch_rays_.assign(primary_rays_.begin() + first, primary_rays_.begin() + first + count);
     PinholeView view = PinholeView::of(camera_, settings_.width, settings_.height, band);
     intersector_.intersectPrimary(view, batch_rays_, batch_hits_, diagnostics ? &part : nullptr);
     std::copy(batch_hits_.begin(), batch_hits_.end(), hits_.begin() + first);
@@ -177,19 +177,20 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   const int w = settings_.width, h = settings_.height;
   const size_t rendered = window_pixels_.size();
   // Primary rays: pixel-major, spp samples each (the pixel centre for a lone sample 0).
-  rays_.resize(rendered * spp);
-  paths_.resize(rendered * spp);
+  // Their own buffers keep their size from frame to frame (no refill with zeros).
+  primary_rays_.resize(rendered * spp);
+  primary_paths_.resize(rendered * spp);
   const CameraRayGenerator camera_rays(camera_, w, h);
   const bool centre_only = spp == 1 && first_sample == 0;
 #pragma omp parallel for schedule(static)
   for (long long k = 0; k < (long long)rendered; ++k) {
-    int p = window_pixels_[k];
+    const int p = window_pixels_[k], x = p % w, y = p / w;
     for (int s = 0; s < spp; ++s) {
       float sx = 0.5f, sy = 0.5f;
       if (!centre_only) jitter(uint32_t(p), uint32_t(first_sample + s), sx, sy);
       size_t r = size_t(k) * spp + s;
-      rays_[r] = camera_rays(p % w, p / w, sx, sy);
-      paths_[r] = PathRay{p, glm::vec3(weight), RayKind::Primary};
+      primary_rays_[r] = camera_rays(x, y, sx, sy);
+      primary_paths_[r] = PathRay{p, glm::vec3(weight), RayKind::Primary};
     }
   }
   frame.times.generate_ms += clock.ms();
@@ -198,21 +199,28 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   const bool aov_pass = window != nullptr;
   RayDiagnostics diagnostics;
   int total_stages = settings_.primary_only ? 1 : settings_.max_depth + 1;
-  for (int depth = 0; !rays_.empty() && depth <= settings_.max_depth; ++depth) {
+  // The generation being traced: the primary rays, then the rays each one spawns.
+  const std::vector<GrRay>* rays = &primary_rays_;
+  const std::vector<PathRay>* paths = &primary_paths_;
+  for (int depth = 0; !rays->empty() && depth <= settings_.max_depth; ++depth) {
     bool first = depth == 0;
-    for (const auto& path : paths_) {
-      if (path.kind == RayKind::Primary) ++frame.rays.primary;
-      else if (path.kind == RayKind::Reflection) ++frame.rays.reflection;
-      else ++frame.rays.refraction;
+    if (first) {
+      frame.rays.primary += rays->size();
+    } else {
+      for (const auto& path : *paths)
+        if (path.kind == RayKind::Reflection) ++frame.rays.reflection;
+        else ++frame.rays.refraction;
     }
     RayDiagnostics* diag = first && aov_pass && settings_.want_diagnostics ? &diagnostics : nullptr;
     if (first && aov_pass && centre_only && !camera_.orthographic)
       tracePrimary(*window, diag, frame.times.intersect_ms);
     else
-      traceBatched(rays_, HitMode::Closest, hits_, diag, frame.times.intersect_ms);
+      traceBatched(*rays, HitMode::Closest, hits_, diag, frame.times.intersect_ms);
     if (first && aov_pass && (settings_.want_aovs || settings_.want_diagnostics))
       fillPrimaryAovs(frame.aovs, diagnostics, spp);
-    shadeGeneration(depth, frame);
+    shadeGeneration(depth, *rays, *paths, frame);
+    rays = &rays_;
+    paths = &paths_;
     if (progress) progress(depth + 1, total_stages);
     if (settings_.primary_only) break;
   }
@@ -247,9 +255,10 @@ bool Renderer::worthTracing(const glm::vec3& weight) const {
   return std::max({weight.x, weight.y, weight.z}) >= settings_.min_path_weight;
 }
 
-void Renderer::shadeGeneration(int depth, Frame& frame) {
+void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
+                               const std::vector<PathRay>& paths, Frame& frame) {
   Stopwatch clock;
-  const size_t n = rays_.size();
+  const size_t n = rays.size();
   const bool spawn = !settings_.primary_only && depth < settings_.max_depth;
   // Fixed slots per ray (one shadow ray per light, reflection + refraction) keep the
   // parallel loop free of shared appends; compacted afterwards in ray order.
@@ -267,8 +276,8 @@ void Renderer::shadeGeneration(int depth, Frame& frame) {
   out.paths.clear();
 #pragma omp for schedule(static)
   for (long long i = 0; i < (long long)n; ++i) {
-    const GrRay& ray = rays_[i];
-    const PathRay& path = paths_[i];
+    const GrRay& ray = rays[i];
+    const PathRay& path = paths[i];
     const GrHit& hit = hits_[i];
     glm::vec3 d(ray.dx, ray.dy, ray.dz);
     if (hit.prim < 0) {
@@ -345,7 +354,7 @@ void Renderer::shadeGeneration(int depth, Frame& frame) {
     }
   }
   }
-  for (size_t i = 0; i < n; ++i) radiance_[paths_[i].pixel] += local[i];
+  for (size_t i = 0; i < n; ++i) radiance_[paths[i].pixel] += local[i];
   frame.times.shade_ms += clock.ms();
 
   // Shadow rays: any hit before the light means the light is occluded.
@@ -362,7 +371,8 @@ void Renderer::shadeGeneration(int depth, Frame& frame) {
       if (shadow_hits_[k].prim < 0) radiance_[shadows_[k].pixel] += shadows_[k].radiance;
   }
 
-  // The next generation: the spawned reflection and refraction rays, in thread order.
+  // The next generation: the spawned reflection and refraction rays, in thread order
+  // (`rays` may be rays_ itself: read no more from here on).
   rays_.clear();
   paths_.clear();
   for (const Spawned& out : spawned_) {

@@ -96,7 +96,10 @@ class Renderer {
   bool worthTracing(const glm::vec3& weight) const;
   // Primary rays (one per pixel of `window`, in rays_) through Intersector::intersectPrimary.
   void tracePrimary(const PixelWindow& window, RayDiagnostics* diagnostics, double& ms);
-  void shadeGeneration(int depth, Frame& frame);
+  // Shades one generation (rays, their paths and hits_), adds the shadow rays' light and
+  // leaves the spawned generation in rays_ / paths_.
+  void shadeGeneration(int depth, const std::vector<GrRay>& rays,
+                       const std::vector<PathRay>& paths, Frame& frame);
   void fillPrimaryAovs(PrimaryAovs& aovs, const RayDiagnostics& diagnostics, int spp);
 
   const Scene& scene_;
@@ -115,7 +118,8 @@ class Renderer {
     std::vector<GrRay> rays;
     std::vector<PathRay> paths;
   };
-  std::vector<GrRay> rays_, shadow_rays_, batch_rays_;
+  std::vector<GrRay> primary_rays_, rays_, shadow_rays_, batch_rays_;
+  std::vector<PathRay> primary_paths_;
   std::vector<GrHit> hits_, shadow_hits_, batch_hits_;
   std::vector<PathRay> paths_;
   std::vector<ShadowRay> shadows_;

@@ -43,6 +43,7 @@ inline int gr_lane_bits16(int16 mask) {
 
 __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1)))
 void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* planes, int stride,
+                   int common_origin, GrRay common,
                    GrGridInfo grid, __global const int* voxel_of_pe,
                    __global const int* pe_tri_begin, __global const GrTriangle* pe_tris,
                    __global float* out_t, __global int* out_prim, __global float* out_u,
@@ -61,18 +62,29 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
   for (int p = get_local_id(0); p < packets; p += GR_PE_LOCAL_SIZE) {
     const int first = task.first_ray + p * LANES;
     const int out = task.out_first + p * LANES;
-    /* Lanes past the task's end read the next rays of the bundle (or its padding, which
-     * never pierces) and are masked off. */
+    /* Lanes past the task's end read the next rays of the bundle and are masked off. */
     int16 in_task = lane < (int16)(task.ray_count - p * LANES);
+    /* With common_origin (camera rays) only the direction planes are filled: origin and
+     * interval come from `common`. Padding has a zero direction and never pierces. */
     GrRays16 r;
-    r.ox = vload16(0, planes + GR_PLANE_OX * stride + first);
-    r.oy = vload16(0, planes + GR_PLANE_OY * stride + first);
-    r.oz = vload16(0, planes + GR_PLANE_OZ * stride + first);
+    float16 tmin, tmax;
     r.dx = vload16(0, planes + GR_PLANE_DX * stride + first);
     r.dy = vload16(0, planes + GR_PLANE_DY * stride + first);
     r.dz = vload16(0, planes + GR_PLANE_DZ * stride + first);
-    float16 tmin = vload16(0, planes + GR_PLANE_TMIN * stride + first);
-    float16 tmax = vload16(0, planes + GR_PLANE_TMAX * stride + first);
+    if (common_origin) {
+      r.ox = common.ox;
+      r.oy = common.oy;
+      r.oz = common.oz;
+      tmin = common.tmin;
+      tmax = common.tmax;
+    } else {
+      r.ox = vload16(0, planes + GR_PLANE_OX * stride + first);
+      r.oy = vload16(0, planes + GR_PLANE_OY * stride + first);
+      r.oz = vload16(0, planes + GR_PLANE_OZ * stride + first);
+      tmin = vload16(0, planes + GR_PLANE_TMIN * stride + first);
+      tmax = vload16(0, planes + GR_PLANE_TMAX * stride + first);
+    }
+    in_task &= (r.dx != 0.0f) | (r.dy != 0.0f) | (r.dz != 0.0f);
 
     float16 t_enter = tmin, t_exit = tmax;
     gr_slab16(r.ox, r.dx, 1.0f / r.dx, lox, hix, &t_enter, &t_exit);
