@@ -1,5 +1,6 @@
 #include "camera_rays.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
@@ -35,6 +36,39 @@ CameraRayGenerator::CameraRayGenerator(const Camera& camera, int width, int heig
       aspect_(camera.aspect > 0.0f ? camera.aspect : float(width) / float(height)),
       tan_half_(std::tan(camera.yfov * 0.5f)),
       origin_(camera.world[3]) {}
+
+void CameraRayGenerator::centreRow(int j, int i0, int i1, GrRay* out) const {
+  if (camera_.orthographic) {
+    for (int i = i0; i < i1; ++i) out[i - i0] = (*this)(i, j, 0.5f, 0.5f);
+    return;
+  }
+  // operator()'s arithmetic spelled out in glm's order of operations: normalize(v) is
+  // v * (1 / sqrt((x*x + y*y) + z*z)); M * v is (M0*x + M1*y) + (M2*z + M3*w).
+  const glm::mat4& m = camera_.world;
+  const float y = 1.0f - 2.0f * (float(j) + 0.5f) / height_;
+  const float ay = y * tan_half_, az = -1.0f;
+  constexpr int kChunk = 64;
+  float dx[kChunk], dy[kChunk], dz[kChunk];
+  for (int c0 = i0; c0 < i1; c0 += kChunk) {
+    const int count = std::min(kChunk, i1 - c0);
+    for (int k = 0; k < count; ++k) {
+      const float x = 2.0f * (float(c0 + k) + 0.5f) / width_ - 1.0f;
+      const float ax = x * tan_half_ * aspect_;
+      const float inv = 1.0f / std::sqrt((ax * ax + ay * ay) + az * az);
+      const float nx = ax * inv, ny = ay * inv, nz = az * inv;
+      const float wx = (m[0][0] * nx + m[1][0] * ny) + (m[2][0] * nz + m[3][0] * 0.0f);
+      const float wy = (m[0][1] * nx + m[1][1] * ny) + (m[2][1] * nz + m[3][1] * 0.0f);
+      const float wz = (m[0][2] * nx + m[1][2] * ny) + (m[2][2] * nz + m[3][2] * 0.0f);
+      const float inv2 = 1.0f / std::sqrt((wx * wx + wy * wy) + wz * wz);
+      dx[k] = wx * inv2;
+      dy[k] = wy * inv2;
+      dz[k] = wz * inv2;
+    }
+    for (int k = 0; k < count; ++k)
+      out[c0 - i0 + k] = GrRay{origin_.x, origin_.y, origin_.z, 0.0f, dx[k], dy[k], dz[k],
+                               std::numeric_limits<float>::infinity()};
+  }
+}
 
 GrRay cameraRay(const Camera& camera, int width, int height, int i, int j, float sx, float sy) {
   return CameraRayGenerator(camera, width, height)(i, j, sx, sy);

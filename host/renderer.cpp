@@ -131,11 +131,17 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
   frame.rays = RayCounts{};
   frame.times = FrameTimes{};
   frame.refined_pixels = 0;
-  radiance_.assign(pixels, glm::vec3(0.0f));
+  radiance_.resize(pixels);
   PixelWindow win = settings_.crop.whole() ? PixelWindow{0, 0, w, h} : settings_.crop;
-  window_pixels_.clear();
-  for (int y = win.y0; y < win.y1; ++y)
-    for (int x = win.x0; x < win.x1; ++x) window_pixels_.push_back(y * w + x);
+  const int ww = win.width();
+  window_pixels_.resize(size_t(ww) * win.height());
+#pragma omp parallel for schedule(static)
+  for (int y = 0; y < h; ++y) {
+    std::fill(radiance_.begin() + size_t(y) * w, radiance_.begin() + size_t(y + 1) * w, glm::vec3(0.0f));
+    if (y >= win.y0 && y < win.y1)
+      for (int x = win.x0; x < win.x1; ++x)
+        window_pixels_[size_t(y - win.y0) * ww + (x - win.x0)] = y * w + x;
+  }
 
   if (!settings_.adaptive_aa) {
     const int spp = std::max(1, settings_.spp);
@@ -166,7 +172,8 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
   frame.film.width = w;
   frame.film.height = h;
   frame.film.rgb.resize(pixels * 3);
-  for (size_t p = 0; p < pixels; ++p)
+#pragma omp parallel for schedule(static)
+  for (long long p = 0; p < (long long)pixels; ++p)
     for (int c = 0; c < 3; ++c) frame.film.rgb[3 * p + c] = radiance_[p][c];
   frame.times.frame_ms = frame_clock.ms();
 }
@@ -179,9 +186,15 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   // Primary rays: pixel-major, spp samples each (the pixel centre for a lone sample 0).
   // Their own buffers keep their size from frame to frame (no refill with zeros).
   primary_rays_.resize(rendered * spp);
-  primary_paths_.resize(rendered * spp);
   const CameraRayGenerator camera_rays(camera_, w, h);
   const bool centre_only = spp == 1 && first_sample == 0;
+  if (centre_only && window) {  // the window's pixel centres, row by row
+    const int ww = window->width();
+#pragma omp parallel for schedule(static)
+    for (int y = window->y0; y < window->y1; ++y)
+      camera_rays.centreRow(y, window->x0, window->x1,
+                            primary_rays_.data() + size_t(y - window->y0) * ww);
+  } else {
 #pragma omp parallel for schedule(static)
   for (long long k = 0; k < (long long)rendered; ++k) {
     const int p = window_pixels_[k], x = p % w, y = p / w;
@@ -190,8 +203,8 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
       if (!centre_only) jitter(uint32_t(p), uint32_t(first_sample + s), sx, sy);
       size_t r = size_t(k) * spp + s;
       primary_rays_[r] = camera_rays(x, y, sx, sy);
-      primary_paths_[r] = PathRay{p, glm::vec3(weight), RayKind::Primary};
     }
+  }
   }
   frame.times.generate_ms += clock.ms();
 
@@ -199,15 +212,17 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   const bool aov_pass = window != nullptr;
   RayDiagnostics diagnostics;
   int total_stages = settings_.primary_only ? 1 : settings_.max_depth + 1;
-  // The generation being traced: the primary rays, then the rays each one spawns.
+  // The generation being traced: the primary rays (their paths implicit: sample s of
+  // window pixel k is ray k * spp + s), then the rays each one spawns.
   const std::vector<GrRay>* rays = &primary_rays_;
-  const std::vector<PathRay>* paths = &primary_paths_;
+  const std::vector<PathRay>* paths = nullptr;
+  const PrimaryPaths primary{spp, weight};
   for (int depth = 0; !rays->empty() && depth <= settings_.max_depth; ++depth) {
     bool first = depth == 0;
     if (first) {
       frame.rays.primary += rays->size();
     } else {
-      for (const auto& path : *paths)
+      for (const PathRay& path : *paths)
         if (path.kind == RayKind::Reflection) ++frame.rays.reflection;
         else ++frame.rays.refraction;
     }
@@ -218,7 +233,7 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
       traceBatched(*rays, HitMode::Closest, hits_, diag, frame.times.intersect_ms);
     if (first && aov_pass && (settings_.want_aovs || settings_.want_diagnostics))
       fillPrimaryAovs(frame.aovs, diagnostics, spp);
-    shadeGeneration(depth, *rays, *paths, frame);
+    shadeGeneration(depth, *rays, paths, primary, frame);
     rays = &rays_;
     paths = &paths_;
     if (progress) progress(depth + 1, total_stages);
@@ -256,7 +271,8 @@ bool Renderer::worthTracing(const glm::vec3& weight) const {
 }
 
 void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
-                               const std::vector<PathRay>& paths, Frame& frame) {
+                               const std::vector<PathRay>* paths, PrimaryPaths primary,
+                               Frame& frame) {
   Stopwatch clock;
   const size_t n = rays.size();
   const bool spawn = !settings_.primary_only && depth < settings_.max_depth;
@@ -277,7 +293,9 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
 #pragma omp for schedule(static)
   for (long long i = 0; i < (long long)n; ++i) {
     const GrRay& ray = rays[i];
-    const PathRay& path = paths[i];
+    const PathRay path = paths ? (*paths)[i]
+                               : PathRay{window_pixels_[i / primary.spp], glm::vec3(primary.weight),
+                                         RayKind::Primary};
     const GrHit& hit = hits_[i];
     glm::vec3 d(ray.dx, ray.dy, ray.dz);
     if (hit.prim < 0) {
@@ -354,7 +372,14 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
     }
   }
   }
-  for (size_t i = 0; i < n; ++i) radiance_[paths[i].pixel] += local[i];
+  if (paths) {
+    for (size_t i = 0; i < n; ++i) radiance_[(*paths)[i].pixel] += local[i];
+  } else {  // primary rays: each pixel's samples are consecutive, pixels distinct
+#pragma omp parallel for schedule(static)
+    for (long long k = 0; k < (long long)(n / primary.spp); ++k)
+      for (int s = 0; s < primary.spp; ++s)
+        radiance_[window_pixels_[k]] += local[size_t(k) * primary.spp + s];
+  }
   frame.times.shade_ms += clock.ms();
 
   // Shadow rays: any hit before the light means the light is occluded.

@@ -98,8 +98,15 @@ class Renderer {
   void tracePrimary(const PixelWindow& window, RayDiagnostics* diagnostics, double& ms);
   // Shades one generation (rays, their paths and hits_), adds the shadow rays' light and
   // leaves the spawned generation in rays_ / paths_.
+  // The paths of primary rays are implicit: ray k * spp + s is sample s of window pixel
+  // k, with throughput `weight`.
+  struct PrimaryPaths {
+    int spp;
+    float weight;
+  };
+  // paths is null for the primary generation.
   void shadeGeneration(int depth, const std::vector<GrRay>& rays,
-                       const std::vector<PathRay>& paths, Frame& frame);
+                       const std::vector<PathRay>* paths, PrimaryPaths primary, Frame& frame);
   void fillPrimaryAovs(PrimaryAovs& aovs, const RayDiagnostics& diagnostics, int spp);
 
   const Scene& scene_;
@@ -119,7 +126,6 @@ class Renderer {
     std::vector<PathRay> paths;
   };
   std::vector<GrRay> primary_rays_, rays_, shadow_rays_, batch_rays_;
-  std::vector<PathRay> primary_paths_;
   std::vector<GrHit> hits_, shadow_hits_, batch_hits_;
   std::vector<PathRay> paths_;
   std::vector<ShadowRay> shadows_;

@@ -1,0 +1,48 @@
+// The vectorised row generator must give the very rays of the per-pixel generator: the
+// renderer uses the first, every reference and test the second.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <vector>
+
+#include "camera_rays.h"
+
+namespace gridrt {
+namespace {
+
+bool sameBits(const GrRay& a, const GrRay& b) { return std::memcmp(&a, &b, sizeof(GrRay)) == 0; }
+
+TEST(CameraRays, CentreRowEqualsPerPixelRaysBitForBit) {
+  struct Case {
+    glm::vec3 eye, target;
+    float yfov;
+    int width, height;
+  };
+  const Case cases[] = {{{0, 1, 4}, {0, 1, 0}, 0.8f, 97, 61},
+                        {{3.5f, -2, 1e3f}, {-1, 7, 2}, 0.1f, 130, 7},
+                        {{1e-3f, 2e-3f, 0}, {5, 5, 5}, 2.5f, 64, 64}};
+  for (const Case& c : cases) {
+    Camera camera = lookAtCamera(c.eye, c.target, c.yfov);
+    CameraRayGenerator generate(camera, c.width, c.height);
+    std::vector<GrRay> row(c.width);
+    int differing = 0;
+    for (int j = 0; j < c.height; ++j) {
+      generate.centreRow(j, 3, c.width, row.data());
+      for (int i = 3; i < c.width; ++i) differing += !sameBits(row[i - 3], generate(i, j, 0.5f, 0.5f));
+    }
+    EXPECT_EQ(differing, 0) << c.width << "x" << c.height;
+  }
+}
+
+TEST(CameraRays, CentreRowOfAnOrthographicCameraEqualsPerPixelRays) {
+  Camera camera = lookAtCamera({0, 0, 5}, {0, 0, 0}, 1.0f);
+  camera.orthographic = true;
+  camera.ymag = 2.0f;
+  CameraRayGenerator generate(camera, 40, 30);
+  std::vector<GrRay> row(40);
+  generate.centreRow(7, 0, 40, row.data());
+  for (int i = 0; i < 40; ++i) EXPECT_TRUE(sameBits(row[i], generate(i, 7, 0.5f, 0.5f))) << i;
+}
+
+}  // namespace
+}  // namespace gridrt
