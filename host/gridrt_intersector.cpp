@@ -142,6 +142,15 @@ void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vec
   intersectBundles(rays, camera_bundles_, HitMode::Closest, hits, diagnostics);
 }
 
+void GridRtIntersector::intersectTowardsPoint(const glm::vec3& point,
+                                              const std::vector<GrRay>& rays, HitMode mode,
+                                              std::vector<GrHit>& hits) {
+  Stopwatch clock;
+  bundleLightRays(grid_, point, rays.data(), rays.size(), light_bundles_, light_scratch_);
+  counters_.lists_ms += clock.ms();
+  intersectBundles(rays, light_bundles_, mode, hits, nullptr);
+}
+
 namespace {
 
 // Maps `count` elements of a device buffer into host memory (no copy on a CPU device).

@@ -6,6 +6,7 @@
 #include "cl_runtime.h"
 #include "device_buffer.h"
 #include "intersector.h"
+#include "light_bundles.h"
 #include "pe_binning.h"
 #include "ray_bundles.h"
 #include "traversal_lists.h"
@@ -33,6 +34,11 @@ class GridRtIntersector : public Intersector {
   // keeps the same pairs, so the same hits.
   void intersectPrimary(const PinholeView& view, const std::vector<GrRay>& rays,
                         std::vector<GrHit>& hits, RayDiagnostics* diagnostics) override;
+
+  // Shadow rays as light bundles (light_bundles.h): PEs receive runs of rays through
+  // their voxels' outlines as seen from the point.
+  void intersectTowardsPoint(const glm::vec3& point, const std::vector<GrRay>& rays,
+                             HitMode mode, std::vector<GrHit>& hits) override;
 
   // Rays and tests each PE received, summed over all batches (load balance).
   const std::vector<uint64_t>& raysPerPe() const { return rays_per_pe_; }
@@ -78,6 +84,8 @@ class GridRtIntersector : public Intersector {
                         HitMode mode, std::vector<GrHit>& hits, RayDiagnostics* diagnostics);
   RayBundles camera_bundles_;
   CameraBundleScratch camera_scratch_;
+  RayBundles light_bundles_;
+  LightBundleScratch light_scratch_;
   std::vector<std::vector<int>> thread_pe_pairs_;  // per thread, pairs per PE
   DeviceBuffer<int> voxel_of_pe_{"the PE voxels", CL_MEM_READ_ONLY};
   DeviceBuffer<float> planes_{"the ray bundle", CL_MEM_READ_ONLY};

@@ -3,6 +3,7 @@
 // on equal t the lowest global triangle index — or, in AnyHit mode, some hit (shadows).
 #pragma once
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,14 @@ class Intersector {
                                 std::vector<GrHit>& hits, RayDiagnostics* diagnostics) {
     (void)view;
     intersect(rays, HitMode::Closest, hits, diagnostics);
+  }
+  // Rays that all end at `point` (shadow rays towards a point or spot light: origin, unit
+  // direction to the point, tmax the distance). Intersectors that can exploit the common
+  // end override it.
+  virtual void intersectTowardsPoint(const glm::vec3& point, const std::vector<GrRay>& rays,
+                                     HitMode mode, std::vector<GrHit>& hits) {
+    (void)point;
+    intersect(rays, mode, hits, nullptr);
   }
   IntersectCounters& counters() { return counters_; }
 

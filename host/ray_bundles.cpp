@@ -1,6 +1,9 @@
 #include "ray_bundles.h"
 
 #include <algorithm>
+#include <climits>
+
+#include "errors.h"
 
 namespace gridrt {
 
@@ -8,6 +11,9 @@ void RayBundles::addRange(int pe, int first, int count) {
   constexpr int kMaxTaskRays = kMaxTaskPackets * kBundleLanes;
   for (int k = 0; k < count; k += kMaxTaskRays) {
     int n = std::min(kMaxTaskRays, count - k);
+    // Result lanes are indexed with int on the device.
+    if (out_lanes + size_t(n) + kBundleLanes > size_t(INT_MAX))
+      throw RenderError("a batch needs more than 2^31 (ray, PE) result lanes; use a coarser --grid or a smaller image");
     tasks.push_back(GrBundleTask{pe, first + k, n, int(out_lanes)});
     out_lanes += size_t(n + kBundleLanes - 1) / kBundleLanes * kBundleLanes;
   }

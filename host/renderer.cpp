@@ -98,6 +98,45 @@ void Renderer::traceBatched(const std::vector<GrRay>& rays, HitMode mode,
   ms += clock.ms();
 }
 
+void Renderer::traceShadows(double& ms) {
+  shadow_hits_.resize(shadow_rays_.size());
+  for (size_t l = 0; l < lights_.size(); ++l) {
+    const Light& light = lights_[l];
+    // This light's rays (all of them when it is the only light).
+    const bool all = lights_.size() == 1;
+    light_ray_index_.clear();
+    light_rays_.clear();
+    if (!all)
+      for (size_t k = 0; k < shadows_.size(); ++k)
+        if (shadows_[k].light == int(l)) {
+          light_ray_index_.push_back(k);
+          light_rays_.push_back(shadow_rays_[k]);
+        }
+    const std::vector<GrRay>& rays = all ? shadow_rays_ : light_rays_;
+    std::vector<GrHit>& hits = all ? shadow_hits_ : light_hits_;
+    if (rays.empty()) continue;
+    if (light.type == LightType::Directional) {
+      traceBatched(rays, HitMode::AnyHit, hits, nullptr, ms);
+    } else {  // every ray ends at the light: the intersector may bundle them
+      Stopwatch clock;
+      if (rays.size() <= kMaxBatchRays) {
+        intersector_.intersectTowardsPoint(light.position, rays, HitMode::AnyHit, hits);
+      } else {
+        hits.resize(rays.size());
+        for (size_t first = 0; first < rays.size(); first += kMaxBatchRays) {
+          size_t count = std::min(kMaxBatchRays, rays.size() - first);
+          batch_rays_.assign(rays.begin() + first, rays.begin() + first + count);
+          intersector_.intersectTowardsPoint(light.position, batch_rays_, HitMode::AnyHit, batch_hits_);
+          std::copy(batch_hits_.begin(), batch_hits_.end(), hits.begin() + first);
+        }
+      }
+      ms += clock.ms();
+    }
+    if (!all)
+      for (size_t i = 0; i < light_ray_index_.size(); ++i) shadow_hits_[light_ray_index_[i]] = hits[i];
+  }
+}
+
 void Renderer::tracePrimary(const PixelWindow& window, RayDiagnostics* diagnostics, double& ms) {
   Stopwatch clock;
   // Bands of whole rows keep each batch a window of the image, as PinholeView requires.
@@ -345,7 +384,7 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       glm::vec3 contribution = weight * direct;
       if (glm::length(contribution) == 0.0f) continue;
       out.shadow_rays.push_back(makeRay(above, to_light, distance));
-      out.shadows.push_back(ShadowRay{path.pixel, contribution});
+      out.shadows.push_back(ShadowRay{path.pixel, int(l), contribution});
     }
     if (!spawn) continue;
     glm::vec3 reflect_weight = terms.mirror;
@@ -391,7 +430,7 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   }
   frame.rays.shadow += shadow_rays_.size();
   if (!shadow_rays_.empty()) {
-    traceBatched(shadow_rays_, HitMode::AnyHit, shadow_hits_, nullptr, frame.times.intersect_ms);
+    traceShadows(frame.times.intersect_ms);
     for (size_t k = 0; k < shadows_.size(); ++k)
       if (shadow_hits_[k].prim < 0) radiance_[shadows_[k].pixel] += shadows_[k].radiance;
   }

@@ -84,6 +84,7 @@ class Renderer {
   };
   struct ShadowRay {
     int pixel;
+    int light;  // index into lights_
     glm::vec3 radiance;  // added to the pixel if the shadow ray reaches the light
   };
   void traceBatched(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
@@ -105,6 +106,9 @@ class Renderer {
     float weight;
   };
   // paths is null for the primary generation.
+  // Traces shadow_rays_ into shadow_hits_ (any hit), light by light: rays towards a point
+  // or spot light through Intersector::intersectTowardsPoint.
+  void traceShadows(double& ms);
   void shadeGeneration(int depth, const std::vector<GrRay>& rays,
                        const std::vector<PathRay>* paths, PrimaryPaths primary, Frame& frame);
   void fillPrimaryAovs(PrimaryAovs& aovs, const RayDiagnostics& diagnostics, int spp);
@@ -126,7 +130,9 @@ class Renderer {
     std::vector<PathRay> paths;
   };
   std::vector<GrRay> primary_rays_, rays_, shadow_rays_, batch_rays_;
-  std::vector<GrHit> hits_, shadow_hits_, batch_hits_;
+  std::vector<GrHit> hits_, shadow_hits_, batch_hits_, light_hits_;
+  std::vector<GrRay> light_rays_;       // one light's shadow rays (several lights)
+  std::vector<size_t> light_ray_index_;  // ... and their indices in shadow_rays_
   std::vector<PathRay> paths_;
   std::vector<ShadowRay> shadows_;
   std::vector<Spawned> spawned_;

@@ -96,13 +96,68 @@ class Conformance : public ::testing::Test {
     return {one, three, automatic, fine};
   }
 
+  // Shadow rays from the surface points `camera` rays hit towards `light`, the way the
+  // renderer makes them (direction and distance from the hit point), but with origins
+  // moved back along the camera ray by `offset`: their ends miss the light by `offset`.
+  static std::vector<GrRay> shadowRays(const std::vector<GrRay>& camera,
+                                       const std::vector<GrHit>& hits, glm::vec3 light,
+                                       float offset) {
+    std::vector<GrRay> rays;
+    for (size_t i = 0; i < camera.size(); ++i) {
+      if (hits[i].prim < 0) continue;
+      const GrRay& c = camera[i];
+      glm::vec3 d(c.dx, c.dy, c.dz), p = glm::vec3(c.ox, c.oy, c.oz) + hits[i].t * d;
+      glm::vec3 o = p - offset * d, to = light - p;
+      float distance = glm::length(to);
+      if (!(distance > 0.0f)) continue;
+      to /= distance;
+      rays.push_back(GrRay{o.x, o.y, o.z, 0.0f, to.x, to.y, to.z, distance});
+    }
+    return rays;
+  }
+
+  // GridRT's light bundles (intersectTowardsPoint) against brute force, closest and any
+  // hit, for a light above the scene and one inside it (voxels around the light receive
+  // every ray), with origins near the surface and pulled well away from it.
+  void expectLightPathAgrees(const std::vector<GrTriangle>& tris, const Bounds& b,
+                             const std::vector<GrRay>& camera,
+                             const std::vector<GridSettings>& grids, const std::string& label) {
+    BruteIntersector brute(*runtime_, tris);
+    std::vector<GrHit> camera_hits, want, got;
+    brute.intersect(camera, HitMode::Closest, camera_hits, nullptr);
+    const float size = glm::length(b.extent());
+    const glm::vec3 lights[] = {b.center() + glm::vec3(0.1f, 0.8f, 0.2f) * size, b.center()};
+    for (const glm::vec3& light : lights)
+      for (float offset : {1e-4f * size, 2e-3f * size}) {
+        std::vector<GrRay> rays = shadowRays(camera, camera_hits, light, offset);
+        brute.intersect(rays, HitMode::Closest, want, nullptr);
+        for (const GridSettings& settings : grids) {
+          UniformGrid grid = buildUniformGrid(tris, b, settings);
+          std::string where = label + " light (" + std::to_string(light.x) + ", " +
+                              std::to_string(light.y) + ", " + std::to_string(light.z) +
+                              ") offset " + std::to_string(offset) + " grid " +
+                              std::to_string(grid.info.nx) + "x" + std::to_string(grid.info.ny) +
+                              "x" + std::to_string(grid.info.nz);
+          GridRtIntersector gridrt(*runtime_, grid, false);
+          gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
+          EXPECT_EQ(test::hitMismatches(want, got, where + " light bundles"), 0u);
+          gridrt.intersectTowardsPoint(light, rays, HitMode::AnyHit, got);
+          size_t differ = 0;
+          for (size_t i = 0; i < rays.size(); ++i) differ += (got[i].prim >= 0) != (want[i].prim >= 0);
+          EXPECT_EQ(differ, 0u) << where << " light bundles any-hit";
+        }
+      }
+  }
+
   void checkScene(const Scene& scene, const std::string& label, int w, int h) {
     auto tris = prepareTriangles(scene);
     Bounds b = sceneBounds(scene);
     Camera camera = cameraOf(scene);
     PinholeView view = PinholeView::of(camera, w, h, PixelWindow{});
-    expectAllAgree(tris, b, cameraRays(scene, w, h), standardGrids(b, tris.size()), label,
-                   camera.orthographic ? nullptr : &view);
+    std::vector<GrRay> rays = cameraRays(scene, w, h);
+    std::vector<GridSettings> grids = standardGrids(b, tris.size());
+    expectAllAgree(tris, b, rays, grids, label, camera.orthographic ? nullptr : &view);
+    expectLightPathAgrees(tris, b, rays, grids, label);
   }
 
   std::unique_ptr<ClRuntime> runtime_;
@@ -322,6 +377,75 @@ TEST_F(Conformance, EveryTriangleInOneVoxel) {
   EXPECT_EQ(grid.peCount(), 2);
   std::vector<GrRay> rays = randomRays(Bounds{glm::vec3(0), glm::vec3(0.1f)}, 2000, 5);
   expectAllAgree(tris, b, rays, {dims(4, 4, 4)}, "cluster");
+}
+
+// Light bundles assume each shadow ray ends at the light. Rays moved sideways by far more
+// than a cube cell (1.0 against cells of ~0.25 at the occluders) must still meet their
+// occluders: the voxels are grown by the rays' measured miss (kLightSlackFactor); with the
+// factor at 0 these rays fall outside the occluders' footprints and get through.
+TEST_F(Conformance, LightBundlesCoverRaysThatMissTheLight) {
+  const glm::vec3 light(0.0f, 2.0f, 0.0f);
+  std::vector<GrTriangle> tris = {tri({-3, 0, -3}, {3, 0, -3}, {3, 0, 3}, 0),
+                                  tri({-3, 0, -3}, {3, 0, 3}, {-3, 0, 3}, 1)};
+  std::vector<GrRay> rays;
+  for (int k = 0; k < 64; ++k) {
+    // A small occluder at height 1 above where each shifted ray passes.
+    float x = -1.5f + 3.0f * float(k % 8) / 7.0f, z = -1.5f + 3.0f * float(k / 8) / 7.0f;
+    glm::vec3 p(x * 0.2f, 0.0f, z * 0.2f);  // the unshifted start, almost under the light
+    glm::vec3 d = glm::normalize(light - p);
+    glm::vec3 o = p + glm::vec3(x, 0.01f, z) - glm::vec3(x * 0.2f, 0.0f, z * 0.2f);
+    glm::vec3 c = o + (1.0f / d.y) * d;  // where the ray crosses y = 1
+    tris.push_back(tri(c + glm::vec3(-0.05f, 0, -0.05f), c + glm::vec3(0.05f, 0, -0.05f),
+                       c + glm::vec3(0, 0, 0.05f), int(tris.size())));
+    rays.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, glm::length(light - p)});
+  }
+  BruteIntersector brute(*runtime_, tris);
+  std::vector<GrHit> want, got;
+  brute.intersect(rays, HitMode::Closest, want, nullptr);
+  size_t blocked = 0;
+  for (const GrHit& h : want) blocked += h.prim >= 2;
+  ASSERT_EQ(blocked, rays.size());
+  GridSettings settings;
+  settings.automatic = false;
+  settings.dims = {12, 4, 12};
+  UniformGrid grid = buildUniformGrid(tris, boundsOf(tris), settings);
+  GridRtIntersector gridrt(*runtime_, grid, false);
+  gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
+  EXPECT_EQ(test::hitMismatches(want, got, "shifted shadow rays"), 0u);
+}
+
+// A light on a grid vertex, with occluders in the eight voxels around it, close to the
+// light: no box there can be projected onto the cube, so each receives every ray.
+TEST_F(Conformance, LightBundlesWithTheLightOnAGridVertex) {
+  std::vector<GrTriangle> tris = {tri({-2, -2, -2}, {2, -2, -2}, {2, -2, 2}, 0),
+                                  tri({-2, 2, 2}, {2, 2, 2}, {-2, 2, -2}, 1)};
+  const glm::vec3 light(0.0f, 0.0f, 0.0f);  // a vertex of the 4x4x4 grid over [-2, 2]^3
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (int k = 0; k < 8; ++k) {
+    glm::vec3 c(k & 1 ? 0.05f : -0.05f, k & 2 ? 0.05f : -0.05f, k & 4 ? 0.05f : -0.05f);
+    tris.push_back(tri(c + glm::vec3(-0.04f, 0, 0), c + glm::vec3(0.04f, 0, 0.01f),
+                       c + glm::vec3(0, 0.04f, -0.02f), int(tris.size())));
+  }
+  std::vector<GrRay> rays;
+  for (int k = 0; k < 4000; ++k) {
+    glm::vec3 o(u(rng) * 1.9f, u(rng) * 1.9f, u(rng) * 1.9f);
+    glm::vec3 d = glm::normalize(light - o);
+    rays.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, glm::length(light - o)});
+  }
+  BruteIntersector brute(*runtime_, tris);
+  std::vector<GrHit> want, got;
+  brute.intersect(rays, HitMode::Closest, want, nullptr);
+  size_t blocked = 0;
+  for (const GrHit& h : want) blocked += h.prim >= 2;
+  ASSERT_GT(blocked, 50u);
+  GridSettings settings;
+  settings.automatic = false;
+  settings.dims = {4, 4, 4};
+  UniformGrid grid = buildUniformGrid(tris, boundsOf(tris), settings);
+  GridRtIntersector gridrt(*runtime_, grid, false);
+  gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
+  EXPECT_EQ(test::hitMismatches(want, got, "light on a vertex"), 0u);
 }
 
 TEST_F(Conformance, EmptyGridMissesEverything) {
