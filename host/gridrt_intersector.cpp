@@ -145,6 +145,10 @@ void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vec
 void GridRtIntersector::intersectTowardsPoint(const glm::vec3& point,
                                               const std::vector<GrRay>& rays, HitMode mode,
                                               std::vector<GrHit>& hits) {
+  if (rays.size() < min_light_bundle_rays_) {
+    intersect(rays, mode, hits, nullptr);
+    return;
+  }
   Stopwatch clock;
   bundleLightRays(grid_, point, rays.data(), rays.size(), light_bundles_, light_scratch_);
   counters_.lists_ms += clock.ms();
@@ -211,15 +215,13 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   rt_.queue().enqueueUnmapMemObject(planes_.get(), planes);
   const size_t lanes = bundles.out_lanes, packets = lanes / kBundleLanes;
   const GrPacketMasks* masks = nullptr;
-  const float *out_t = nullptr, *out_u = nullptr, *out_v = nullptr;
+  const float *results = nullptr, *out_t = nullptr, *out_u = nullptr, *out_v = nullptr;
   const int* out_prim = nullptr;
   if (!bundles.tasks.empty()) {
     bundle_tasks_.upload(rt_, bundles.tasks);
-    out_t_.reserve(rt_, lanes);
-    out_prim_.reserve(rt_, lanes);
-    out_u_.reserve(rt_, lanes);
-    out_v_.reserve(rt_, lanes);
-    masks_.reserve(rt_, packets);
+    // t, prim, u, v per lane, then the packets' masks (4 ints each): one buffer.
+    const size_t result_floats = 4 * lanes + 4 * packets;
+    results_.reserve(rt_, result_floats);
     first_hit_key_.reserve(rt_, stride);
     if (interrupt_)
       rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, stride * sizeof(int));
@@ -234,22 +236,20 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     k.setArg(arg++, voxel_of_pe_.get());
     k.setArg(arg++, pe_tri_begin_.get());
     k.setArg(arg++, pe_triangles_.get());
-    k.setArg(arg++, out_t_.get());
-    k.setArg(arg++, out_prim_.get());
-    k.setArg(arg++, out_u_.get());
-    k.setArg(arg++, out_v_.get());
-    k.setArg(arg++, masks_.get());
+    k.setArg(arg++, results_.get());
+    k.setArg(arg++, int(lanes));
     k.setArg(arg++, first_hit_key_.get());
     k.setArg(arg++, mode == HitMode::AnyHit ? 1 : 0);
     k.setArg(arg++, interrupt_ ? 1 : 0);
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange,
                                      cl::NDRange(bundles.tasks.size() * kPeLocalSize),
                                      cl::NDRange(kPeLocalSize));
-    masks = mapBuffer<GrPacketMasks>(rt_, masks_.get(), CL_MAP_READ, packets);
-    out_t = mapBuffer<float>(rt_, out_t_.get(), CL_MAP_READ, lanes);
-    out_prim = mapBuffer<int>(rt_, out_prim_.get(), CL_MAP_READ, lanes);
-    out_u = mapBuffer<float>(rt_, out_u_.get(), CL_MAP_READ, lanes);
-    out_v = mapBuffer<float>(rt_, out_v_.get(), CL_MAP_READ, lanes);
+    results = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
+    out_t = results;
+    out_prim = reinterpret_cast<const int*>(results + lanes);
+    out_u = results + 2 * lanes;
+    out_v = results + 3 * lanes;
+    masks = reinterpret_cast<const GrPacketMasks*>(results + 4 * lanes);
   }
   counters_.kernel_ms += clock.ms();
 
@@ -326,13 +326,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       }
     }
   }
-  if (masks) {
-    rt_.queue().enqueueUnmapMemObject(masks_.get(), const_cast<GrPacketMasks*>(masks));
-    rt_.queue().enqueueUnmapMemObject(out_t_.get(), const_cast<float*>(out_t));
-    rt_.queue().enqueueUnmapMemObject(out_prim_.get(), const_cast<int*>(out_prim));
-    rt_.queue().enqueueUnmapMemObject(out_u_.get(), const_cast<float*>(out_u));
-    rt_.queue().enqueueUnmapMemObject(out_v_.get(), const_cast<float*>(out_v));
-  }
+  if (results) rt_.queue().enqueueUnmapMemObject(results_.get(), const_cast<float*>(results));
   if (diagnostics) {
     list_length_known_ = true;
     for (int length : diagnostics->list_length)

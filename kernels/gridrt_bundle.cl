@@ -46,9 +46,15 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
                    int common_origin, GrRay common,
                    GrGridInfo grid, __global const int* voxel_of_pe,
                    __global const int* pe_tri_begin, __global const GrTriangle* pe_tris,
-                   __global float* out_t, __global int* out_prim, __global float* out_u,
-                   __global float* out_v, __global GrPacketMasks* masks,
+                   __global float* results, int lanes,
                    __global int* first_hit_key, int any_hit, int interrupt) {
+  /* One result buffer (one map on the host): t, prim, u, v planes of `lanes` each, then
+   * one GrPacketMasks per packet. */
+  __global float* out_t = results;
+  __global int* out_prim = (__global int*)(results + lanes);
+  __global float* out_u = results + 2 * lanes;
+  __global float* out_v = results + 3 * lanes;
+  __global GrPacketMasks* masks = (__global GrPacketMasks*)(results + 4 * lanes);
   const GrBundleTask task = tasks[get_group_id(0)];
   const int voxel = voxel_of_pe[task.pe];
   const int vx = voxel % grid.nx, vy = (voxel / grid.nx) % grid.ny, vz = voxel / (grid.nx * grid.ny);

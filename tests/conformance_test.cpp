@@ -139,6 +139,7 @@ class Conformance : public ::testing::Test {
                               std::to_string(grid.info.nx) + "x" + std::to_string(grid.info.ny) +
                               "x" + std::to_string(grid.info.nz);
           GridRtIntersector gridrt(*runtime_, grid, false);
+          gridrt.setMinLightBundleRays(0);
           gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
           EXPECT_EQ(test::hitMismatches(want, got, where + " light bundles"), 0u);
           gridrt.intersectTowardsPoint(light, rays, HitMode::AnyHit, got);
@@ -410,6 +411,7 @@ TEST_F(Conformance, LightBundlesCoverRaysThatMissTheLight) {
   settings.dims = {12, 4, 12};
   UniformGrid grid = buildUniformGrid(tris, boundsOf(tris), settings);
   GridRtIntersector gridrt(*runtime_, grid, false);
+  gridrt.setMinLightBundleRays(0);
   gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
   EXPECT_EQ(test::hitMismatches(want, got, "shifted shadow rays"), 0u);
 }
@@ -444,6 +446,7 @@ TEST_F(Conformance, LightBundlesWithTheLightOnAGridVertex) {
   settings.dims = {4, 4, 4};
   UniformGrid grid = buildUniformGrid(tris, boundsOf(tris), settings);
   GridRtIntersector gridrt(*runtime_, grid, false);
+  gridrt.setMinLightBundleRays(0);
   gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
   EXPECT_EQ(test::hitMismatches(want, got, "light on a vertex"), 0u);
 }
