@@ -145,13 +145,17 @@ void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vec
 void GridRtIntersector::intersectTowardsPoint(const glm::vec3& point,
                                               const std::vector<GrRay>& rays, HitMode mode,
                                               std::vector<GrHit>& hits) {
-  if (rays.size() < min_light_bundle_rays_) {
+  if (!force_light_bundles_ && rays.size() < kMinLightBundleRays) {
     intersect(rays, mode, hits, nullptr);
     return;
   }
   Stopwatch clock;
   bundleLightRays(grid_, point, rays.data(), rays.size(), light_bundles_, light_scratch_);
   counters_.lists_ms += clock.ms();
+  if (!force_light_bundles_ && light_bundles_.out_lanes > kMaxLightBundleLanesPerRay * rays.size()) {
+    intersect(rays, mode, hits, nullptr);
+    return;
+  }
   intersectBundles(rays, light_bundles_, mode, hits, nullptr);
 }
 

@@ -23,6 +23,10 @@ constexpr int kPeTaskRays = kPeLocalSize * kPeLanes;
 // sparse cube wastes most packet lanes (measured on the default scene: 2,017 rays cost
 // 4.7 ms as bundles, about 1 ms as lists; 282,407 rays 23 ms as bundles, ~100 ms as lists).
 constexpr size_t kMinLightBundleRays = 65536;
+// Light bundles that would test more lanes than this per ray (a light among dense geometry
+// with a fine grid: every near voxel covers a wide cone) also fall back to the lists,
+// whose cost follows the real (ray, PE) pairs.
+constexpr size_t kMaxLightBundleLanesPerRay = 64;
 
 class GridRtIntersector : public Intersector {
  public:
@@ -43,8 +47,8 @@ class GridRtIntersector : public Intersector {
   // their voxels' outlines as seen from the point.
   void intersectTowardsPoint(const glm::vec3& point, const std::vector<GrRay>& rays,
                              HitMode mode, std::vector<GrHit>& hits) override;
-  // Tests lower it to 0 to send every light batch through the bundles.
-  void setMinLightBundleRays(size_t rays) { min_light_bundle_rays_ = rays; }
+  // Tests send every light batch through the bundles, whatever its size and shape.
+  void forceLightBundles() { force_light_bundles_ = true; }
 
   // Rays and tests each PE received, summed over all batches (load balance).
   const std::vector<uint64_t>& raysPerPe() const { return rays_per_pe_; }
@@ -90,7 +94,7 @@ class GridRtIntersector : public Intersector {
                         HitMode mode, std::vector<GrHit>& hits, RayDiagnostics* diagnostics);
   RayBundles camera_bundles_;
   CameraBundleScratch camera_scratch_;
-  size_t min_light_bundle_rays_ = kMinLightBundleRays;
+  bool force_light_bundles_ = false;
   RayBundles light_bundles_;
   LightBundleScratch light_scratch_;
   std::vector<std::vector<int>> thread_pe_pairs_;  // per thread, pairs per PE

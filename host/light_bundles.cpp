@@ -12,45 +12,106 @@ namespace {
 // The two axes spanning the faces of cube axis a.
 constexpr int kOtherAxes[3][2] = {{1, 2}, {2, 0}, {0, 1}};
 
-// The cell of direction w (from the light): face 2 * axis + (w[axis] < 0), then row and
-// column of (w[b], w[c]) / |w[axis]| in [-1, 1]^2.
-int cellOf(const glm::vec3& w, int res) {
+// The face of direction w (from the light), 2 * axis + (w[axis] < 0), and the point
+// (w[b], w[c]) / |w[axis]| in [-1, 1]^2 where it meets that face; false for w = 0.
+bool onFace(const glm::vec3& w, int& face, float& u, float& v) {
   const glm::vec3 m = glm::abs(w);
   const int a = m.x >= m.y && m.x >= m.z ? 0 : (m.y >= m.z ? 1 : 2);
-  const float major = m[a];
-  auto index = [&](float x) {  // float clamp first: NaN and huge values stay in range
-    float i = (x / major + 1.0f) * 0.5f * float(res);
-    return int(std::max(0.0f, std::min(float(res - 1), i)));
-  };
-  if (!(major > 0.0f)) return 0;
-  const int face = 2 * a + (w[a] < 0.0f);
-  return (face * res + index(w[kOtherAxes[a][1]])) * res + index(w[kOtherAxes[a][0]]);
+  if (!(m[a] > 0.0f)) return false;
+  face = 2 * a + (w[a] < 0.0f);
+  u = w[kOtherAxes[a][0]] / m[a];
+  v = w[kOtherAxes[a][1]] / m[a];
+  return true;
 }
 
 }  // namespace
 
-int lightCubeResolution(size_t count) {
-  return std::max(8, std::min(1024, int(std::sqrt(double(count) / 16.0))));
+void FaceWindow::add(float u, float v) {
+  umin = std::min(umin, u);
+  umax = std::max(umax, u);
+  vmin = std::min(vmin, v);
+  vmax = std::max(vmax, v);
+  ++count;
+}
+
+void FaceWindow::merge(const FaceWindow& o) {
+  umin = std::min(umin, o.umin);
+  umax = std::max(umax, o.umax);
+  vmin = std::min(vmin, o.vmin);
+  vmax = std::max(vmax, o.vmax);
+  count += o.count;
+}
+
+void FaceWindow::layout(int row, size_t cell) {
+  first_row = row;
+  first_cell = cell;
+  res = count ? std::max(1, std::min(1024, int(std::sqrt(float(count) / kLightRaysPerCell)))) : 0;
+  if (!res) return;
+  // A window of zero width (one ray, or rays in a line) still gets a positive scale.
+  u0 = umin;
+  v0 = vmin;
+  su = float(res) / std::max(umax - umin, 1e-6f);
+  sv = float(res) / std::max(vmax - vmin, 1e-6f);
+}
+
+size_t FaceWindow::cellOf(float u, float v) const {
+  auto index = [&](float x) {  // float clamp first: NaN and huge values stay in range
+    return int(std::max(0.0f, std::min(float(res - 1), x)));
+  };
+  return first_cell + size_t(index((v - v0) * sv)) * res + index((u - u0) * su);
+}
+
+void FaceWindow::cellRange(float lo, float hi, float origin, float scale, int& c0, int& c1) const {
+  auto cell = [&](float x) { return std::floor(std::max(-1.0f, std::min(float(res), (x - origin) * scale))); };
+  c0 = std::max(0, int(cell(lo)) - kLightCellMargin);
+  c1 = std::min(res, int(cell(hi)) + 1 + kLightCellMargin);
 }
 
 void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRay* rays,
                      size_t count, RayBundles& bundles, LightBundleScratch& scratch) {
-  const int res = lightCubeResolution(count);
-  const int rows = 6 * res;
-  const size_t cells = size_t(rows) * res;
-
-  // Each ray's cell, and how far its end lies from the light.
-  scratch.cell_of.resize(count);
+  // Each ray's face and point on it, the faces' occupied windows, and how far the rays'
+  // ends lie from the light.
+  scratch.face_of.resize(count);
+  scratch.uv.resize(2 * count);
+  const int threads = omp_get_max_threads();
+  std::vector<std::array<FaceWindow, 6>> thread_windows(threads);
   float miss = 0.0f;
-#pragma omp parallel for schedule(static) reduction(max : miss)
-  for (long long r = 0; r < (long long)count; ++r) {
-    const GrRay& ray = rays[r];
-    const glm::vec3 d(ray.dx, ray.dy, ray.dz);
-    const glm::vec3 end = glm::vec3(ray.ox, ray.oy, ray.oz) + ray.tmax * d;
-    const float off = glm::length(end - light);
-    miss = std::max(miss, std::isfinite(off) ? off : INFINITY);
-    scratch.cell_of[r] = cellOf(-d, res);
+#pragma omp parallel num_threads(threads) reduction(max : miss)
+  {
+    std::array<FaceWindow, 6>& windows = thread_windows[omp_get_thread_num()];
+#pragma omp for schedule(static)
+    for (long long r = 0; r < (long long)count; ++r) {
+      const GrRay& ray = rays[r];
+      const glm::vec3 d(ray.dx, ray.dy, ray.dz);
+      const glm::vec3 end = glm::vec3(ray.ox, ray.oy, ray.oz) + ray.tmax * d;
+      const float off = glm::length(end - light);
+      miss = std::max(miss, std::isfinite(off) ? off : INFINITY);
+      int face = 0;
+      float u = 0.0f, v = 0.0f;
+      if (!onFace(-d, face, u, v)) face = 0;  // no direction: any cell will do
+      scratch.face_of[r] = face;
+      scratch.uv[2 * r] = u;
+      scratch.uv[2 * r + 1] = v;
+      windows[face].add(u, v);
+    }
   }
+  // Each face's cells cover the window its rays occupy, about kLightRaysPerCell a cell.
+  std::array<FaceWindow, 6>& faces = scratch.faces;
+  faces = thread_windows[0];
+  for (int t = 1; t < threads; ++t)
+    for (int f = 0; f < 6; ++f) faces[f].merge(thread_windows[t][f]);
+  int rows = 0;
+  size_t cells = 0;
+  for (FaceWindow& w : faces) {
+    w.layout(rows, cells);
+    rows += w.res;
+    cells += size_t(w.res) * w.res;
+  }
+  scratch.cell_of.resize(count);
+#pragma omp parallel for schedule(static)
+  for (long long r = 0; r < (long long)count; ++r)
+    scratch.cell_of[r] = int(faces[scratch.face_of[r]].cellOf(scratch.uv[2 * r], scratch.uv[2 * r + 1]));
+
   // Bundle order: counting sort by cell (stable), padded to whole packets.
   std::vector<int>& start = scratch.cell_start;
   start.assign(cells + 1, 0);
@@ -68,15 +129,16 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
   const float slack = kLightSlackFactor * miss;
 
   const int pes = grid.peCount();
-  const int threads = omp_get_max_threads();
   scratch.thread_runs.resize(threads);
 #pragma omp parallel num_threads(threads)
   {
     auto& runs = scratch.thread_runs[omp_get_thread_num()];
     runs.clear();
-    auto addRow = [&](int pe, int row, int c0, int c1) {
-      const int first = start[size_t(row) * res + c0], last = start[size_t(row) * res + c1];
-      if (last > first) runs.push_back(LightBundleScratch::Run{pe, row, first, last - first});
+    auto addRow = [&](int pe, int face, int r, int c0, int c1) {
+      const FaceWindow& fw = faces[face];
+      const size_t row_cell = fw.first_cell + size_t(r) * fw.res;
+      const int first = start[row_cell + c0], last = start[row_cell + c1];
+      if (last > first) runs.push_back(LightBundleScratch::Run{pe, fw.first_row + r, first, last - first});
     };
 #pragma omp for schedule(static)
     for (int pe = 0; pe < pes; ++pe) {
@@ -87,10 +149,13 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
                                      g.miny + float(v.y + 1) * g.celly,
                                      g.minz + float(v.z + 1) * g.cellz) + slack;
       if (!std::isfinite(slack)) {  // rays that do not end anywhere near the light
-        for (int row = 0; row < rows; ++row) addRow(pe, row, 0, res);
+        for (int face = 0; face < 6; ++face)
+          for (int r = 0; r < faces[face].res; ++r) addRow(pe, face, r, 0, faces[face].res);
         continue;
       }
       for (int face = 0; face < 6; ++face) {
+        const FaceWindow& fw = faces[face];
+        if (fw.res == 0) continue;
         const int a = face / 2, b = kOtherAxes[a][0], c = kOtherAxes[a][1];
         const float s = face % 2 ? -1.0f : 1.0f;
         // The part of the box in front of the face (depth s * (x_a - light_a) >= 0).
@@ -117,12 +182,10 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
           }
         }
         // Cells, kLightCellMargin more on every side against rounding.
-        auto cell = [&](float x) { return std::max(-1.0f, std::min(float(res), (x + 1.0f) * 0.5f * float(res))); };
-        const int c0 = std::max(0, int(std::floor(cell(umin))) - kLightCellMargin);
-        const int c1 = std::min(res, int(std::floor(cell(umax))) + 1 + kLightCellMargin);
-        const int r0 = std::max(0, int(std::floor(cell(vmin))) - kLightCellMargin);
-        const int r1 = std::min(res, int(std::floor(cell(vmax))) + 1 + kLightCellMargin);
-        for (int r = r0; r < r1; ++r) addRow(pe, face * res + r, c0, c1);
+        int c0, c1, r0, r1;
+        fw.cellRange(umin, umax, fw.u0, fw.su, c0, c1);
+        fw.cellRange(vmin, vmax, fw.v0, fw.sv, r0, r1);
+        for (int r = r0; r < r1; ++r) addRow(pe, face, r, c0, c1);
       }
     }
   }

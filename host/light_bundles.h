@@ -10,6 +10,8 @@
 // kLightSlackFactor) before it is projected, its projection is grown by one cell, and
 // the part of it that touches a plane through the light projects to the face borders.
 #pragma once
+#include <array>
+#include <cmath>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -25,7 +27,34 @@ constexpr float kLightSlackFactor = 4.0f;
 // of the face coordinates) is far below a cell. No test isolates it (the slack covers).
 constexpr int kLightCellMargin = 1;
 
+// Rays a cube cell should hold on average.
+constexpr float kLightRaysPerCell = 8.0f;
+
+// The rectangle of one cube face its rays occupy (in face coordinates, [-1, 1]^2), cut
+// into res x res cells: rays from a light towards a small object crowd a small part of
+// one face, and the cells follow them there.
+struct FaceWindow {
+  float umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
+  size_t count = 0;
+  int res = 0;            // cells a side; 0 when no ray lies on this face
+  int first_row = 0;      // the face's first row among all faces' rows
+  size_t first_cell = 0;  // ... and first cell
+  float u0 = 0.0f, v0 = 0.0f, su = 0.0f, sv = 0.0f;  // column = floor((u - u0) * su)
+
+  void add(float u, float v);
+  void merge(const FaceWindow& other);
+  // Chooses res (about kLightRaysPerCell rays a cell) and places the face's cells.
+  void layout(int first_row, size_t first_cell);
+  size_t cellOf(float u, float v) const;  // of a ray on this face
+  // The columns (rows) [c0, c1) that face coordinates [lo, hi] may touch, with
+  // kLightCellMargin more on each side.
+  void cellRange(float lo, float hi, float origin, float scale, int& c0, int& c1) const;
+};
+
 struct LightBundleScratch {
+  std::vector<int> face_of;     // per ray
+  std::vector<float> uv;        // per ray, its point on the face
+  std::array<FaceWindow, 6> faces;
   std::vector<int> cell_of;     // per ray
   std::vector<int> cell_start;  // counting sort by cell, then the run starts
   struct Run {
@@ -36,9 +65,6 @@ struct LightBundleScratch {
   std::vector<size_t> row_start;
   std::vector<Run> sorted;
 };
-
-// Cells per cube face edge for `count` rays: about eight rays per cell on two faces.
-int lightCubeResolution(size_t count);
 
 void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRay* rays,
                      size_t count, RayBundles& bundles, LightBundleScratch& scratch);
