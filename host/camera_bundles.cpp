@@ -75,7 +75,19 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   // Per PE and tile row, the run of tiles whose pixel centres may see the voxel: the
   // projected box's extent in the row band, one pixel wider on every side against the
   // rounding of the projection (its error is a few ulps of the pixel coordinates).
+  // PEs nearest the eye first (their tasks come first in every tile row), so that with
+  // the interrupt a PE behind a hit finds it already reported.
   const int pes = grid.peCount();
+  const glm::vec3 eye = glm::vec3(glm::inverse(view.world_to_camera)[3]);
+  auto& near_first = scratch.near_first;
+  near_first.resize(pes);
+#pragma omp parallel for schedule(static)
+  for (int pe = 0; pe < pes; ++pe) {
+    glm::vec3 centre = glm::vec3(grid.voxelCoords(grid.voxel_of_pe[pe])) + 0.5f;
+    centre = glm::vec3(g.minx, g.miny, g.minz) + centre * glm::vec3(g.cellx, g.celly, g.cellz);
+    near_first[pe] = {glm::length(centre - eye), pe};
+  }
+  std::sort(near_first.begin(), near_first.end());
   const int threads = omp_get_max_threads();
   thread_runs.resize(threads);
 #pragma omp parallel num_threads(threads)
@@ -83,7 +95,8 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
     std::vector<TileRun>& runs = thread_runs[omp_get_thread_num()];
     runs.clear();
 #pragma omp for schedule(static)
-    for (int pe = 0; pe < pes; ++pe) {
+    for (int k = 0; k < pes; ++k) {
+      const int pe = near_first[k].second;
       glm::ivec3 v = grid.voxelCoords(grid.voxel_of_pe[pe]);
       glm::vec3 lo(g.minx + float(v.x) * g.cellx, g.miny + float(v.y) * g.celly,
                    g.minz + float(v.z) * g.cellz);

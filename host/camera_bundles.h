@@ -4,6 +4,7 @@
 // run of tiles the footprint covers; the kernel's slab test keeps the rays that really
 // pierce the voxel, which are exactly the pairs of the rays' traversal lists.
 #pragma once
+#include <utility>
 #include <vector>
 
 #include "pinhole_view.h"
@@ -24,6 +25,7 @@ struct CameraBundleScratch {
   std::vector<std::vector<TileRun>> thread_runs;  // each thread's runs
   std::vector<size_t> row_start;                  // counting sort by tile row
   std::vector<TileRun> sorted;
+  std::vector<std::pair<float, int>> near_first;  // (distance to the eye, PE), sorted
 };
 
 void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundles& bundles,
