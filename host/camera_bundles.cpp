@@ -63,9 +63,14 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   const int ww = win.width(), wh = win.height();
   const int tiles_x = (ww + kTileSize - 1) / kTileSize, tiles_y = (wh + kTileSize - 1) / kTileSize;
   const size_t slots = size_t(tiles_x) * tiles_y * kBundleLanes;
+  // The tile layout depends on the window's size only: kept from the previous call.
+  const bool same_layout = bundles.ray_of.size() == slots && scratch.layout_width == ww &&
+                           scratch.layout_height == wh;
+  scratch.layout_width = ww;
+  scratch.layout_height = wh;
   bundles.ray_of.resize(slots);
-#pragma omp parallel for schedule(static)
-  for (long long b = 0; b < (long long)slots; ++b) {
+#pragma omp parallel for schedule(static) if (!same_layout)
+  for (long long b = 0; b < (same_layout ? 0 : (long long)slots); ++b) {
     int tile = int(b / kBundleLanes), lane = int(b % kBundleLanes);
     int x = (tile % tiles_x) * kTileSize + lane % kTileSize;
     int y = (tile / tiles_x) * kTileSize + lane / kTileSize;

@@ -26,6 +26,7 @@ struct CameraBundleScratch {
   std::vector<size_t> row_start;                  // counting sort by tile row
   std::vector<TileRun> sorted;
   std::vector<std::pair<float, int>> near_first;  // (distance to the eye, PE), sorted
+  int layout_width = 0, layout_height = 0;        // the window RayBundles::ray_of is for
 };
 
 void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundles& bundles,
