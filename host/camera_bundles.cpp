@@ -54,7 +54,7 @@ void extentInBand(const glm::vec2 (&c)[8], float a, float b, float& lo, float& h
 }  // namespace
 
 void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundles& bundles,
-                      CameraBundleScratch& scratch) {
+                      bool near_first, CameraBundleScratch& scratch) {
   auto& thread_runs = scratch.thread_runs;
   auto& row_start = scratch.row_start;
   auto& sorted = scratch.sorted;
@@ -80,19 +80,19 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   // Per PE and tile row, the run of tiles whose pixel centres may see the voxel: the
   // projected box's extent in the row band, one pixel wider on every side against the
   // rounding of the projection (its error is a few ulps of the pixel coordinates).
-  // PEs nearest the eye first (their tasks come first in every tile row), so that with
-  // the interrupt a PE behind a hit finds it already reported.
+  // With near_first, PEs nearest the eye first (their tasks come first in every tile
+  // row), so that with the interrupt a PE behind a hit finds it already reported.
   const int pes = grid.peCount();
   const glm::vec3 eye = glm::vec3(glm::inverse(view.world_to_camera)[3]);
-  auto& near_first = scratch.near_first;
-  near_first.resize(pes);
+  auto& order = scratch.near_first;
+  order.resize(pes);
 #pragma omp parallel for schedule(static)
   for (int pe = 0; pe < pes; ++pe) {
     glm::vec3 centre = glm::vec3(grid.voxelCoords(grid.voxel_of_pe[pe])) + 0.5f;
     centre = glm::vec3(g.minx, g.miny, g.minz) + centre * glm::vec3(g.cellx, g.celly, g.cellz);
-    near_first[pe] = {glm::length(centre - eye), pe};
+    order[pe] = {near_first ? glm::length(centre - eye) : 0.0f, pe};
   }
-  std::sort(near_first.begin(), near_first.end());
+  if (near_first) std::sort(order.begin(), order.end());
   const int threads = omp_get_max_threads();
   thread_runs.resize(threads);
 #pragma omp parallel num_threads(threads)
@@ -101,7 +101,7 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
     runs.clear();
 #pragma omp for schedule(static)
     for (int k = 0; k < pes; ++k) {
-      const int pe = near_first[k].second;
+      const int pe = order[k].second;
       glm::ivec3 v = grid.voxelCoords(grid.voxel_of_pe[pe]);
       glm::vec3 lo(g.minx + float(v.x) * g.cellx, g.miny + float(v.y) * g.celly,
                    g.minz + float(v.z) * g.cellz);

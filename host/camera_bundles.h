@@ -25,11 +25,12 @@ struct CameraBundleScratch {
   std::vector<std::vector<TileRun>> thread_runs;  // each thread's runs
   std::vector<size_t> row_start;                  // counting sort by tile row
   std::vector<TileRun> sorted;
-  std::vector<std::pair<float, int>> near_first;  // (distance to the eye, PE), sorted
+  std::vector<std::pair<float, int>> near_first;  // (distance to the eye, PE), PE order
   int layout_width = 0, layout_height = 0;        // the window RayBundles::ray_of is for
 };
 
+// near_first: tasks of nearer PEs first in every tile row (for the interrupt).
 void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundles& bundles,
-                      CameraBundleScratch& scratch);
+                      bool near_first, CameraBundleScratch& scratch);
 
 }  // namespace gridrt

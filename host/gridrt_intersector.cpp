@@ -137,7 +137,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
 void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vector<GrRay>& rays,
                                          std::vector<GrHit>& hits, RayDiagnostics* diagnostics) {
   Stopwatch clock;
-  bundleCameraRays(grid_, view, camera_bundles_, camera_scratch_);
+  bundleCameraRays(grid_, view, camera_bundles_, interrupt_, camera_scratch_);
   counters_.lists_ms += clock.ms();
   intersectBundles(rays, camera_bundles_, HitMode::Closest, hits, diagnostics);
 }

@@ -8,6 +8,7 @@ their own columns (load_ms, compile_ms, build_ms).
     .venv/bin/python tools/bench.py paper     # the paper's experiment (bunny_res4, 320x240)
     .venv/bin/python tools/bench.py scaling   # triangles and image size
     .venv/bin/python tools/bench.py whitted   # full Whitted frames with shadows
+    .venv/bin/python tools/bench.py targets   # the four speed targets of issue 4
     .venv/bin/python tools/bench.py all
 """
 import argparse
@@ -194,6 +195,60 @@ def chart_whitted(rows, path):
     fig.savefig(path, dpi=110)
 
 
+# The speed targets (issue 4) and the runs that measure them: each figure is the median,
+# over RUNS separate processes, of each process's median frame.
+TARGET_RUNS = 5
+TARGETS = [
+    ("bunny_res4 320x240 primary, ms/frame (<= 2)", "frame_ms",
+     [os.path.join(SHARED, "bunny_res4.glb"), "--width", "320", "--height", "240", "--primary-only"]),
+    ("bunny 1280x960 primary, Mrays/s (>= 20)", "mrays_per_s",
+     [os.path.join(SHARED, "bunny.glb"), "--width", "1280", "--height", "960", "--primary-only"]),
+    ("bunny grid build, ms (<= 40)", "build_ms",
+     [os.path.join(SHARED, "bunny.glb"), "--width", "64", "--height", "48", "--primary-only"]),
+    ("default scene 640x480 Whitted depth 5, fps (>= 30)", "fps",
+     ["--width", "640", "--height", "480", "--max-depth", "5"]),
+]
+
+
+def bench_targets(frames):
+    import statistics
+    rows = []
+    for label, key, args in TARGETS:
+        for variant, extra in [("gridrt", []), ("gridrt --pe-interrupt", ["--pe-interrupt"]),
+                               ("dda", ["--accel", "dda"])]:
+            runs = [run(args + extra, frames) for _ in range(TARGET_RUNS)]
+            for s in runs:
+                s["fps"] = 1000.0 / s["frame_ms"]
+            value = statistics.median(s[key] for s in runs)
+            frame = statistics.median(s["frame_ms"] for s in runs)
+            r = row(f"{label} [{variant}]", runs[0], target=label, variant=variant, value=value)
+            r["frame_ms"] = frame
+            for phase in ("lists_ms", "kernel_ms", "reduce_ms", "shade_ms", "build_ms"):
+                r[phase] = statistics.median(s[phase] for s in runs)
+            rows.append(r)
+            print(f"target {label:52s} {variant:22s}: {value:8.2f}  (frame {frame:.2f} ms)", flush=True)
+    return rows
+
+
+def chart_targets(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    targets = list(dict.fromkeys(r["target"] for r in rows))
+    fig, axes = plt.subplots(1, len(targets), figsize=(4 * len(targets), 4))
+    for ax, target in zip(axes, targets):
+        sub = [r for r in rows if r["target"] == target]
+        ax.bar([r["variant"] for r in sub], [r["value"] for r in sub])
+        goal = float(target.split("(")[-1].split()[-1].rstrip(")"))
+        ax.axhline(goal, color="red", ls="--", label=f"target {goal:g}")
+        ax.set_title(target, fontsize=8)
+        ax.tick_params(axis="x", labelsize=7, rotation=20)
+        ax.legend(fontsize=7)
+    fig.suptitle(machine_line(), fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
 def machine_line():
     cpu = platform.processor() or platform.machine()
     try:
@@ -205,7 +260,7 @@ def machine_line():
 
 
 SETS = {"paper": (bench_paper, chart_paper), "scaling": (bench_scaling, chart_scaling),
-        "whitted": (bench_whitted, chart_whitted)}
+        "whitted": (bench_whitted, chart_whitted), "targets": (bench_targets, chart_targets)}
 
 
 def main():

@@ -2,8 +2,18 @@
 # Sets GridRT up on a Debian machine: installs the Debian packages that are missing
 # (as root, or through sudo; otherwise prints the exact command to run), then configures
 # a Release build in build/ and builds the renderer, tools and tests.
+# With --bench it also sets up the benchmark harness's Python packages (matplotlib,
+# numpy, OpenImageIO from PyPI into .venv/, via tools/setup_python.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+bench=0
+for arg in "$@"; do
+  case "$arg" in
+    --bench) bench=1 ;;
+    *) echo "setup: unknown option '$arg' (only --bench)" >&2; exit 2 ;;
+  esac
+done
 
 PACKAGES=(
   cmake make g++ pkg-config
@@ -36,3 +46,6 @@ fi
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j"$(nproc)"
 echo "setup: build ready in build/ (executable build/gridrt)"
+if [ "$bench" -eq 1 ]; then
+  tools/setup_python.sh
+fi
