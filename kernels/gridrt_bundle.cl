@@ -16,7 +16,7 @@
  * hit) is below its own t_enter. */
 #pragma OPENCL FP_CONTRACT OFF
 #include "gridrt_types.h"
-#include "ray_triangle16.h"
+#include "pe_closest16.h"
 
 #define LANES 16
 
@@ -111,22 +111,10 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
     m.skipped = 0;
     m.pad = 0;
     if (any(active)) {
-      float16 best_t = tmax, best_u = 0.0f, best_v = 0.0f;
-      int16 best_prim = -1;
-      for (int i = begin; i < end; ++i) {
-        GrTriangle tri = pe_tris[i];
-        float16 t, u, v;
-        int16 hit = gr_intersect16(&r, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z,
-                                   tri.e2x, tri.e2y, tri.e2z, &t, &u, &v);
-        /* The in-voxel rule: without it a triangle spanning voxels could win in a PE
-         * that comes before the voxel where its hit really lies. */
-        hit &= active & (t > tmin) & (t < best_t) & (t >= t_enter) & (t <= t_exit);
-        best_t = select(best_t, t, hit);
-        best_u = select(best_u, u, hit);
-        best_v = select(best_v, v, hit);
-        best_prim = select(best_prim, (int16)tri.prim, hit);
-        if (any_hit && all((best_prim >= 0) | (active == 0))) break;
-      }
+      float16 best_t, best_u, best_v;
+      int16 best_prim;
+      gr_pe_closest16(&r, pe_tris, begin, end, tmin, tmax, t_enter, t_exit, active, any_hit,
+                      &best_t, &best_u, &best_v, &best_prim);
       m.hit = gr_lane_bits16(best_prim >= 0);
       if (m.hit) {
         vstore16(best_t, 0, out_t + out);

@@ -11,7 +11,7 @@
  * int bits of a non-negative float, which order like the floats (atomic_min on ints). */
 #pragma OPENCL FP_CONTRACT OFF
 #include "gridrt_types.h"
-#include "ray_triangle16.h"
+#include "pe_closest16.h"
 
 #define LANES 16
 #define GR_SKIPPED (-2) /* prim of a slot whose test was skipped by the interrupt */
@@ -56,24 +56,10 @@ void gridrt_pe(__global const GrPeTask* tasks, __global const GrPeEntry* entries
   float16 t_enter = vload16(0, a_t0);
   float16 t_exit = vload16(0, a_t1);
   int16 active = vload16(0, a_active);
-  float16 best_t = tmax;
-  float16 best_u = 0.0f, best_v = 0.0f;
-  int16 best_prim = -1;
-  int begin = pe_tri_begin[task.pe], end = pe_tri_begin[task.pe + 1];
-  for (int i = begin; i < end; ++i) {
-    GrTriangle tri = pe_tris[i];
-    float16 t, u, v;
-    int16 hit = gr_intersect16(&r16, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z,
-                                  tri.e2x, tri.e2y, tri.e2z, &t, &u, &v);
-    /* The in-voxel rule: without it a triangle spanning voxels could win in a PE that
-     * comes before the voxel where its hit really lies. */
-    hit &= active & (t > tmin) & (t < best_t) & (t >= t_enter) & (t <= t_exit);
-    best_t = select(best_t, t, hit);
-    best_u = select(best_u, u, hit);
-    best_v = select(best_v, v, hit);
-    best_prim = select(best_prim, (int16)tri.prim, hit);
-    if (any_hit && all((best_prim >= 0) | (active == 0))) break;
-  }
+  float16 best_t, best_u, best_v;
+  int16 best_prim;
+  gr_pe_closest16(&r16, pe_tris, pe_tri_begin[task.pe], pe_tri_begin[task.pe + 1], tmin, tmax,
+                  t_enter, t_exit, active, any_hit, &best_t, &best_u, &best_v, &best_prim);
   float o_t[LANES], o_u[LANES], o_v[LANES];
   int o_p[LANES];
   vstore16(best_t, 0, o_t); vstore16(best_u, 0, o_u); vstore16(best_v, 0, o_v);

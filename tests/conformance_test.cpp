@@ -384,6 +384,28 @@ TEST_F(Conformance, EveryTriangleInOneVoxel) {
   expectAllAgree(tris, b, rays, {dims(4, 4, 4)}, "cluster");
 }
 
+// Closest hits through light bundles (forced, whatever the batch) on a fixed grid, against
+// brute force; at least `blocked` rays must hit an occluder (triangles from index 2 on),
+// or the case tests nothing.
+size_t lightBundleMismatches(ClRuntime& runtime, const std::vector<GrTriangle>& tris,
+                             const std::vector<GrRay>& rays, glm::vec3 light, glm::ivec3 dims,
+                             size_t blocked) {
+  BruteIntersector brute(runtime, tris);
+  std::vector<GrHit> want, got;
+  brute.intersect(rays, HitMode::Closest, want, nullptr);
+  size_t occluded = 0;
+  for (const GrHit& h : want) occluded += h.prim >= 2;
+  EXPECT_GE(occluded, blocked);
+  GridSettings settings;
+  settings.automatic = false;
+  settings.dims = dims;
+  UniformGrid grid = buildUniformGrid(tris, boundsOf(tris), settings);
+  GridRtIntersector gridrt(runtime, grid, false);
+  gridrt.forceLightBundles();
+  gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
+  return test::hitMismatches(want, got, "light bundles");
+}
+
 // Light bundles assume each shadow ray ends at the light. Rays moved sideways by far more
 // than a cube cell (1.0 against cells of ~0.02 at the occluders) must still meet their
 // occluders: the voxels are grown by the rays' measured miss (kLightSlackFactor); with the
@@ -404,20 +426,7 @@ TEST_F(Conformance, LightBundlesCoverRaysThatMissTheLight) {
                        c + glm::vec3(0, 0, 0.01f), int(tris.size())));
     rays.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, glm::length(light - p)});
   }
-  BruteIntersector brute(*runtime_, tris);
-  std::vector<GrHit> want, got;
-  brute.intersect(rays, HitMode::Closest, want, nullptr);
-  size_t blocked = 0;
-  for (const GrHit& h : want) blocked += h.prim >= 2;
-  ASSERT_EQ(blocked, rays.size());
-  GridSettings settings;
-  settings.automatic = false;
-  settings.dims = {12, 4, 12};
-  UniformGrid grid = buildUniformGrid(tris, boundsOf(tris), settings);
-  GridRtIntersector gridrt(*runtime_, grid, false);
-  gridrt.forceLightBundles();
-  gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
-  EXPECT_EQ(test::hitMismatches(want, got, "shifted shadow rays"), 0u);
+  EXPECT_EQ(lightBundleMismatches(*runtime_, tris, rays, light, {12, 4, 12}, rays.size()), 0u);
 }
 
 // A light on a grid vertex, with occluders in the eight voxels around it, close to the
@@ -439,20 +448,7 @@ TEST_F(Conformance, LightBundlesWithTheLightOnAGridVertex) {
     glm::vec3 d = glm::normalize(light - o);
     rays.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, glm::length(light - o)});
   }
-  BruteIntersector brute(*runtime_, tris);
-  std::vector<GrHit> want, got;
-  brute.intersect(rays, HitMode::Closest, want, nullptr);
-  size_t blocked = 0;
-  for (const GrHit& h : want) blocked += h.prim >= 2;
-  ASSERT_GT(blocked, 50u);
-  GridSettings settings;
-  settings.automatic = false;
-  settings.dims = {4, 4, 4};
-  UniformGrid grid = buildUniformGrid(tris, boundsOf(tris), settings);
-  GridRtIntersector gridrt(*runtime_, grid, false);
-  gridrt.forceLightBundles();
-  gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
-  EXPECT_EQ(test::hitMismatches(want, got, "light on a vertex"), 0u);
+  EXPECT_EQ(lightBundleMismatches(*runtime_, tris, rays, light, {4, 4, 4}, 50), 0u);
 }
 
 TEST_F(Conformance, EmptyGridMissesEverything) {
