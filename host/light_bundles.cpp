@@ -74,7 +74,8 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
   scratch.face_of.resize(count);
   scratch.uv.resize(2 * count);
   const int threads = omp_get_max_threads();
-  std::vector<std::array<FaceWindow, 6>> thread_windows(threads);
+  auto& thread_windows = scratch.thread_windows;
+  thread_windows.assign(threads, std::array<FaceWindow, 6>{});
   float miss = 0.0f;
 #pragma omp parallel num_threads(threads) reduction(max : miss)
   {
@@ -112,15 +113,37 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
   for (long long r = 0; r < (long long)count; ++r)
     scratch.cell_of[r] = int(faces[scratch.face_of[r]].cellOf(scratch.uv[2 * r], scratch.uv[2 * r + 1]));
 
-  // Bundle order: counting sort by cell (stable), padded to whole packets.
+  // Bundle order: counting sort by cell, padded to whole packets. Stable and parallel:
+  // each thread counts its own range of rays, and its rays of a cell follow the rays of
+  // that cell from the threads before it.
   std::vector<int>& start = scratch.cell_start;
   start.assign(cells + 1, 0);
-  for (size_t r = 0; r < count; ++r) ++start[scratch.cell_of[r] + 1];
-  for (size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
-  bundles.ray_of.assign((count + kBundleLanes - 1) / kBundleLanes * kBundleLanes, -1);
+  bundles.ray_of.resize((count + kBundleLanes - 1) / kBundleLanes * kBundleLanes);
+  scratch.thread_counts.resize(threads);
+#pragma omp parallel num_threads(threads)
   {
-    std::vector<int> next(start.begin(), start.end() - 1);
-    for (size_t r = 0; r < count; ++r) bundles.ray_of[next[scratch.cell_of[r]]++] = int(r);
+    const int me = omp_get_thread_num(), n = omp_get_num_threads();
+    const size_t r0 = count * me / n, r1 = count * (me + 1) / n;
+    std::vector<int>& mine = scratch.thread_counts[me];
+    mine.assign(cells, 0);
+    for (size_t r = r0; r < r1; ++r) ++mine[scratch.cell_of[r]];
+#pragma omp barrier
+#pragma omp single
+    {
+      int offset = 0;
+      for (size_t c = 0; c < cells; ++c) {
+        start[c] = offset;
+        for (int t = 0; t < n; ++t) {
+          const int k = scratch.thread_counts[t][c];
+          scratch.thread_counts[t][c] = offset;
+          offset += k;
+        }
+      }
+      start[cells] = offset;
+    }
+    for (size_t r = r0; r < r1; ++r) bundles.ray_of[mine[scratch.cell_of[r]]++] = int(r);
+#pragma omp for schedule(static)
+    for (long long b = (long long)count; b < (long long)bundles.ray_of.size(); ++b) bundles.ray_of[b] = -1;
   }
 
   // Boxes are grown by the rays' largest miss of the light (rounding of the corners'

@@ -57,6 +57,8 @@ struct LightBundleScratch {
   std::array<FaceWindow, 6> faces;
   std::vector<int> cell_of;     // per ray
   std::vector<int> cell_start;  // counting sort by cell, then the run starts
+  std::vector<std::vector<int>> thread_counts;  // per thread and cell (parallel sort)
+  std::vector<std::array<FaceWindow, 6>> thread_windows;
   struct Run {
     int pe, row;  // row: face * R + cell row
     int first, count;
