@@ -142,6 +142,10 @@ class Conformance : public ::testing::Test {
                               ") offset " + std::to_string(offset) + " grid " +
                               std::to_string(grid.info.nx) + "x" + std::to_string(grid.info.ny) +
                               "x" + std::to_string(grid.info.nz);
+          // As the renderer calls it: small batches fall back to the lists.
+          GridRtIntersector plain(*runtime_, grid, false);
+          plain.intersectTowardsPoint(light, rays, HitMode::Closest, got);
+          EXPECT_EQ(test::hitMismatches(want, got, where + " towards the light"), 0u);
           GridRtIntersector gridrt(*runtime_, grid, false);
           gridrt.forceLightBundles();
           gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
