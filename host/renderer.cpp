@@ -78,11 +78,11 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, Intersector& inters
   lights_ = scene.has_lights ? scene.lights : std::vector<Light>{defaultLight(scene, camera)};
 }
 
-void Renderer::traceBatched(const std::vector<GrRay>& rays, HitMode mode,
-                            std::vector<GrHit>& hits, RayDiagnostics* diagnostics, double& ms) {
+void Renderer::traceInBatches(const std::vector<GrRay>& rays, std::vector<GrHit>& hits,
+                              RayDiagnostics* diagnostics, double& ms, const BatchTrace& trace) {
   Stopwatch clock;
   if (rays.size() <= kMaxBatchRays) {
-    intersector_.intersect(rays, mode, hits, diagnostics);
+    trace(rays, hits, diagnostics);
   } else {
     hits.resize(rays.size());
     RayDiagnostics part;
@@ -90,12 +90,20 @@ void Renderer::traceBatched(const std::vector<GrRay>& rays, HitMode mode,
     for (size_t first = 0; first < rays.size(); first += kMaxBatchRays) {
       size_t count = std::min(kMaxBatchRays, rays.size() - first);
       batch_rays_.assign(rays.begin() + first, rays.begin() + first + count);
-      intersector_.intersect(batch_rays_, mode, batch_hits_, diagnostics ? &part : nullptr);
+      trace(batch_rays_, batch_hits_, diagnostics ? &part : nullptr);
       std::copy(batch_hits_.begin(), batch_hits_.end(), hits.begin() + first);
       if (diagnostics) appendDiagnostics(*diagnostics, part);
     }
   }
   ms += clock.ms();
+}
+
+void Renderer::traceBatched(const std::vector<GrRay>& rays, HitMode mode,
+                            std::vector<GrHit>& hits, RayDiagnostics* diagnostics, double& ms) {
+  traceInBatches(rays, hits, diagnostics, ms,
+                 [&](const std::vector<GrRay>& batch, std::vector<GrHit>& out, RayDiagnostics* d) {
+                   intersector_.intersect(batch, mode, out, d);
+                 });
 }
 
 void Renderer::traceShadows(double& ms) {
@@ -118,19 +126,10 @@ void Renderer::traceShadows(double& ms) {
     if (light.type == LightType::Directional) {
       traceBatched(rays, HitMode::AnyHit, hits, nullptr, ms);
     } else {  // every ray ends at the light: the intersector may bundle them
-      Stopwatch clock;
-      if (rays.size() <= kMaxBatchRays) {
-        intersector_.intersectTowardsPoint(light.position, rays, HitMode::AnyHit, hits);
-      } else {
-        hits.resize(rays.size());
-        for (size_t first = 0; first < rays.size(); first += kMaxBatchRays) {
-          size_t count = std::min(kMaxBatchRays, rays.size() - first);
-          batch_rays_.assign(rays.begin() + first, rays.begin() + first + count);
-          intersector_.intersectTowardsPoint(light.position, batch_rays_, HitMode::AnyHit, batch_hits_);
-          std::copy(batch_hits_.begin(), batch_hits_.end(), hits.begin() + first);
-        }
-      }
-      ms += clock.ms();
+      traceInBatches(rays, hits, nullptr, ms,
+                     [&](const std::vector<GrRay>& batch, std::vector<GrHit>& out, RayDiagnostics*) {
+                       intersector_.intersectTowardsPoint(light.position, batch, HitMode::AnyHit, out);
+                     });
     }
     if (!all)
       for (size_t i = 0; i < light_ray_index_.size(); ++i) shadow_hits_[light_ray_index_[i]] = hits[i];

@@ -87,6 +87,13 @@ class Renderer {
     int light;  // index into lights_
     glm::vec3 radiance;  // added to the pixel if the shadow ray reaches the light
   };
+  // One batch of at most kMaxBatchRays rays: its hits (and diagnostics when asked).
+  using BatchTrace = std::function<void(const std::vector<GrRay>&, std::vector<GrHit>&,
+                                        RayDiagnostics*)>;
+  // Traces `rays` through `trace` in batches of at most kMaxBatchRays, bounding device
+  // memory; hits (and diagnostics) come back in ray order.
+  void traceInBatches(const std::vector<GrRay>& rays, std::vector<GrHit>& hits,
+                      RayDiagnostics* diagnostics, double& ms, const BatchTrace& trace);
   void traceBatched(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                     RayDiagnostics* diagnostics, double& ms);
   // Traces `spp` primary samples (jitter indices first_sample...) of window_pixels_, each
