@@ -58,7 +58,6 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   auto& thread_runs = scratch.thread_runs;
   auto& row_start = scratch.row_start;
   auto& sorted = scratch.sorted;
-  const GrGridInfo& g = grid.info;
   const PixelWindow& win = view.window;
   const int ww = win.width(), wh = win.height();
   const int tiles_x = (ww + kTileSize - 1) / kTileSize, tiles_y = (wh + kTileSize - 1) / kTileSize;
@@ -88,9 +87,13 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   order.resize(pes);
 #pragma omp parallel for schedule(static)
   for (int pe = 0; pe < pes; ++pe) {
-    glm::vec3 centre = glm::vec3(grid.voxelCoords(grid.voxel_of_pe[pe])) + 0.5f;
-    centre = glm::vec3(g.minx, g.miny, g.minz) + centre * glm::vec3(g.cellx, g.celly, g.cellz);
-    order[pe] = {near_first ? glm::length(centre - eye) : 0.0f, pe};
+    float distance = 0.0f;
+    if (near_first) {
+      glm::vec3 lo, hi;
+      grid.voxelBoxOfPe(pe, lo, hi);
+      distance = glm::length(0.5f * (lo + hi) - eye);
+    }
+    order[pe] = {distance, pe};
   }
   if (near_first) std::sort(order.begin(), order.end());
   const int threads = omp_get_max_threads();
@@ -102,11 +105,8 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
 #pragma omp for schedule(static)
     for (int k = 0; k < pes; ++k) {
       const int pe = order[k].second;
-      glm::ivec3 v = grid.voxelCoords(grid.voxel_of_pe[pe]);
-      glm::vec3 lo(g.minx + float(v.x) * g.cellx, g.miny + float(v.y) * g.celly,
-                   g.minz + float(v.z) * g.cellz);
-      glm::vec3 hi(g.minx + float(v.x + 1) * g.cellx, g.miny + float(v.y + 1) * g.celly,
-                   g.minz + float(v.z + 1) * g.cellz);
+      glm::vec3 lo, hi;
+      grid.voxelBoxOfPe(pe, lo, hi);
       glm::vec2 corners[8];
       if (!projectCorners(view, lo, hi, corners)) {
         for (int ty = 0; ty < tiles_y; ++ty) runs.push_back(TileRun{pe, ty, 0, tiles_x});

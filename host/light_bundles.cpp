@@ -148,7 +148,6 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
 
   // Boxes are grown by the rays' largest miss of the light (rounding of the corners'
   // projections is covered by the cell margin below).
-  const GrGridInfo& g = grid.info;
   const float slack = kLightSlackFactor * miss;
 
   const int pes = grid.peCount();
@@ -165,12 +164,10 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
     };
 #pragma omp for schedule(static)
     for (int pe = 0; pe < pes; ++pe) {
-      const glm::ivec3 v = grid.voxelCoords(grid.voxel_of_pe[pe]);
-      const glm::vec3 lo = glm::vec3(g.minx + float(v.x) * g.cellx, g.miny + float(v.y) * g.celly,
-                                     g.minz + float(v.z) * g.cellz) - slack;
-      const glm::vec3 hi = glm::vec3(g.minx + float(v.x + 1) * g.cellx,
-                                     g.miny + float(v.y + 1) * g.celly,
-                                     g.minz + float(v.z + 1) * g.cellz) + slack;
+      glm::vec3 lo, hi;
+      grid.voxelBoxOfPe(pe, lo, hi);
+      lo -= slack;
+      hi += slack;
       if (!std::isfinite(slack)) {  // rays that do not end anywhere near the light
         for (int face = 0; face < 6; ++face)
           for (int r = 0; r < faces[face].res; ++r) addRow(pe, face, r, 0, faces[face].res);

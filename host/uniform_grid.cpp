@@ -41,6 +41,15 @@ size_t UniformGrid::memoryBytes() const {
          pe_tri_begin.size() * sizeof(int) + pe_triangles.size() * sizeof(GrTriangle);
 }
 
+void UniformGrid::voxelBoxOfPe(int pe, glm::vec3& lo, glm::vec3& hi) const {
+  const glm::ivec3 v = voxelCoords(voxel_of_pe[pe]);
+  const GrGridInfo& g = info;
+  lo = glm::vec3(g.minx + float(v.x) * g.cellx, g.miny + float(v.y) * g.celly,
+                 g.minz + float(v.z) * g.cellz);
+  hi = glm::vec3(g.minx + float(v.x + 1) * g.cellx, g.miny + float(v.y + 1) * g.celly,
+                 g.minz + float(v.z + 1) * g.cellz);
+}
+
 glm::ivec3 UniformGrid::voxelCoords(int linear) const {
   return {linear % info.nx, (linear / info.nx) % info.ny, linear / (info.nx * info.ny)};
 }

@@ -48,6 +48,9 @@ struct UniformGrid {
   int triangleCountOfPe(int pe) const { return pe_tri_begin[pe + 1] - pe_tri_begin[pe]; }
   size_t memoryBytes() const;
   glm::ivec3 voxelCoords(int linear) const;
+  // The box of PE `pe`'s voxel with the 3D-DDA's plane arithmetic (min + k * cell, in
+  // float), so its faces are bit for bit the planes the traversal uses.
+  void voxelBoxOfPe(int pe, glm::vec3& lo, glm::vec3& hi) const;
 };
 
 // R_i = d_i * cbrt(density * N / V), each at least 1, capped by the limits above.
