@@ -13,7 +13,6 @@ with that scale, point/spot intensities times scale^2 so the image stays the sam
 ray offset (epsilon=1e-4 / robust) for chart (b). Run with .venv/bin/python."""
 import argparse
 import base64
-import csv
 import json
 import os
 import shutil
@@ -22,6 +21,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench  # noqa: E402  (write_csv)
 import compare_renders  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -171,13 +171,7 @@ def main(argv=None):
             print(f"{tag}: rmse {row['rmse']:.3g}", flush=True)
 
     csv_path = os.path.join(args.out, "accuracy.csv")
-    keys = []
-    for r in rows:
-        keys += [k for k in r if k not in keys]
-    with open(csv_path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=keys)
-        w.writeheader()
-        w.writerows(rows)
+    bench.write_csv(csv_path, rows)
     charts(rows, args.out)
     shutil.rmtree(work, ignore_errors=True)
     print(f"wrote {csv_path}")
