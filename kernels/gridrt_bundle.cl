@@ -41,13 +41,16 @@ inline int gr_lane_bits16(int16 mask) {
   return b2.x | b2.y;
 }
 
-__kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1)))
-void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* planes, int stride,
-                   int common_origin, GrRay common,
-                   GrGridInfo grid, __global const int* voxel_of_pe,
-                   __global const int* pe_tri_begin, __global const GrTriangle* pe_tris,
-                   __global float* results, int lanes,
-                   __global int* first_hit_key, int any_hit, int interrupt) {
+/* One packet: 16 consecutive rays of a task against the PE's voxel and triangles, writing
+ * its masks and, where a lane hits, its closest in-voxel hit. Always inlined, so that for
+ * camera rays (origin and interval splats of one ray) the compiler folds every operation
+ * on the common origin into one scalar operation per triangle: the same operations on the
+ * same values, so every lane rounds exactly as before. */
+inline __attribute__((always_inline)) void gr_bundle_packet(
+    const GrRays16* r, float16 tmin, float16 tmax, int16 in_task, int first, int out,
+    float lox, float hix, float loy, float hiy, float loz, float hiz,
+    __global const GrTriangle* pe_tris, int begin, int end, __global float* results,
+    int lanes, __global int* first_hit_key, int any_hit, int interrupt) {
   /* One result buffer (one map on the host): t, prim, u, v planes of `lanes` each, then
    * one GrPacketMasks per packet. */
   __global float* out_t = results;
@@ -55,6 +58,58 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
   __global float* out_u = results + 2 * lanes;
   __global float* out_v = results + 3 * lanes;
   __global GrPacketMasks* masks = (__global GrPacketMasks*)(results + 4 * lanes);
+  /* Padding has a zero direction and never pierces. */
+  in_task &= (r->dx != 0.0f) | (r->dy != 0.0f) | (r->dz != 0.0f);
+
+  float16 t_enter = tmin, t_exit = tmax;
+  gr_slab16(r->ox, r->dx, 1.0f / r->dx, lox, hix, &t_enter, &t_exit);
+  gr_slab16(r->oy, r->dy, 1.0f / r->dy, loy, hiy, &t_enter, &t_exit);
+  gr_slab16(r->oz, r->dz, 1.0f / r->dz, loz, hiz, &t_enter, &t_exit);
+  int16 pierced = in_task & (t_enter <= t_exit);
+  int16 active = pierced;
+  int16 skipped = (int16)0;
+  if (interrupt) {
+    int16 key = vload16(0, first_hit_key + first);
+    skipped = pierced & (key < as_int16(t_enter));
+    active = pierced & ~skipped;
+  }
+
+  GrPacketMasks m;
+  m.pierced = 0;
+  m.hit = 0;
+  m.skipped = 0;
+  m.pad = 0;
+  if (any(active)) {
+    float16 best_t, best_u, best_v;
+    int16 best_prim;
+    gr_pe_closest16(r, pe_tris, begin, end, tmin, tmax, t_enter, t_exit, active, any_hit,
+                    &best_t, &best_u, &best_v, &best_prim);
+    m.hit = gr_lane_bits16(best_prim >= 0);
+    if (m.hit) {
+      vstore16(best_t, 0, out_t + out);
+      vstore16(best_prim, 0, out_prim + out);
+      vstore16(best_u, 0, out_u + out);
+      vstore16(best_v, 0, out_v + out);
+      if (interrupt) {
+        int keys[LANES];
+        vstore16(as_int16(t_enter), 0, keys);
+        for (int k = 0; k < LANES; ++k)
+          if (m.hit & (1 << k)) atomic_min(&first_hit_key[first + k], keys[k]);
+      }
+    }
+  }
+  m.pierced = gr_lane_bits16(pierced);
+  m.skipped = gr_lane_bits16(skipped);
+  masks[out / LANES] = m;
+}
+
+__kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1)))
+void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* planes, int stride,
+                   int common_origin, GrRay common,
+                   GrGridInfo grid, __global const int* voxel_of_pe,
+                   __global const int* pe_tri_begin, __global const GrTriangle* pe_tris,
+                   __global float* results, int lanes,
+                   __global int* first_hit_key, int any_hit, int interrupt) {
   const GrBundleTask task = tasks[get_group_id(0)];
   const int voxel = voxel_of_pe[task.pe];
   const int vx = voxel % grid.nx, vy = (voxel / grid.nx) % grid.ny, vz = voxel / (grid.nx * grid.ny);
@@ -69,68 +124,28 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
     const int first = task.first_ray + p * LANES;
     const int out = task.out_first + p * LANES;
     /* Lanes past the task's end read the next rays of the bundle and are masked off. */
-    int16 in_task = lane < (int16)(task.ray_count - p * LANES);
-    /* With common_origin (camera rays) only the direction planes are filled: origin and
-     * interval come from `common`. Padding has a zero direction and never pierces. */
+    const int16 in_task = lane < (int16)(task.ray_count - p * LANES);
     GrRays16 r;
-    float16 tmin, tmax;
     r.dx = vload16(0, planes + GR_PLANE_DX * stride + first);
     r.dy = vload16(0, planes + GR_PLANE_DY * stride + first);
     r.dz = vload16(0, planes + GR_PLANE_DZ * stride + first);
+    /* With common_origin (camera rays) only the direction planes are filled: origin and
+     * interval come from `common`. */
     if (common_origin) {
       r.ox = common.ox;
       r.oy = common.oy;
       r.oz = common.oz;
-      tmin = common.tmin;
-      tmax = common.tmax;
+      gr_bundle_packet(&r, (float16)common.tmin, (float16)common.tmax, in_task, first, out,
+                       lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results, lanes,
+                       first_hit_key, any_hit, interrupt);
     } else {
       r.ox = vload16(0, planes + GR_PLANE_OX * stride + first);
       r.oy = vload16(0, planes + GR_PLANE_OY * stride + first);
       r.oz = vload16(0, planes + GR_PLANE_OZ * stride + first);
-      tmin = vload16(0, planes + GR_PLANE_TMIN * stride + first);
-      tmax = vload16(0, planes + GR_PLANE_TMAX * stride + first);
+      gr_bundle_packet(&r, vload16(0, planes + GR_PLANE_TMIN * stride + first),
+                       vload16(0, planes + GR_PLANE_TMAX * stride + first), in_task, first,
+                       out, lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results,
+                       lanes, first_hit_key, any_hit, interrupt);
     }
-    in_task &= (r.dx != 0.0f) | (r.dy != 0.0f) | (r.dz != 0.0f);
-
-    float16 t_enter = tmin, t_exit = tmax;
-    gr_slab16(r.ox, r.dx, 1.0f / r.dx, lox, hix, &t_enter, &t_exit);
-    gr_slab16(r.oy, r.dy, 1.0f / r.dy, loy, hiy, &t_enter, &t_exit);
-    gr_slab16(r.oz, r.dz, 1.0f / r.dz, loz, hiz, &t_enter, &t_exit);
-    int16 pierced = in_task & (t_enter <= t_exit);
-    int16 active = pierced;
-    int16 skipped = (int16)0;
-    if (interrupt) {
-      int16 key = vload16(0, first_hit_key + first);
-      skipped = pierced & (key < as_int16(t_enter));
-      active = pierced & ~skipped;
-    }
-
-    GrPacketMasks m;
-    m.pierced = 0;
-    m.hit = 0;
-    m.skipped = 0;
-    m.pad = 0;
-    if (any(active)) {
-      float16 best_t, best_u, best_v;
-      int16 best_prim;
-      gr_pe_closest16(&r, pe_tris, begin, end, tmin, tmax, t_enter, t_exit, active, any_hit,
-                      &best_t, &best_u, &best_v, &best_prim);
-      m.hit = gr_lane_bits16(best_prim >= 0);
-      if (m.hit) {
-        vstore16(best_t, 0, out_t + out);
-        vstore16(best_prim, 0, out_prim + out);
-        vstore16(best_u, 0, out_u + out);
-        vstore16(best_v, 0, out_v + out);
-        if (interrupt) {
-          int keys[LANES];
-          vstore16(as_int16(t_enter), 0, keys);
-          for (int k = 0; k < LANES; ++k)
-            if (m.hit & (1 << k)) atomic_min(&first_hit_key[first + k], keys[k]);
-        }
-      }
-    }
-    m.pierced = gr_lane_bits16(pierced);
-    m.skipped = gr_lane_bits16(skipped);
-    masks[out / LANES] = m;
   }
 }

@@ -8,7 +8,7 @@
 #include "gridrt_types.h"
 #include "ray_triangle16.h"
 
-inline void gr_pe_closest16(const GrRays16* r, __global const GrTriangle* tris, int begin,
+inline __attribute__((always_inline)) void gr_pe_closest16(const GrRays16* r, __global const GrTriangle* tris, int begin,
                             int end, float16 tmin, float16 tmax, float16 t_enter,
                             float16 t_exit, int16 active, int any_hit, float16* best_t_out,
                             float16* best_u_out, float16* best_v_out, int16* best_prim_out) {
