@@ -139,7 +139,8 @@ void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vec
   Stopwatch clock;
   bundleCameraRays(grid_, view, camera_bundles_, interrupt_, camera_scratch_);
   counters_.lists_ms += clock.ms();
-  intersectBundles(rays, camera_bundles_, HitMode::Closest, hits, diagnostics);
+  const GrCullFrame frame = cullFrameOf(view);
+  intersectBundles(rays, camera_bundles_, HitMode::Closest, hits, diagnostics, &frame);
 }
 
 void GridRtIntersector::intersectTowardsPoint(const glm::vec3& point,
@@ -172,9 +173,23 @@ int popcount(int bits) { return __builtin_popcount(unsigned(bits)); }
 
 }  // namespace
 
+GrCullFrame GridRtIntersector::prepareCulling(bool allowed, const GrCullFrame& frame,
+                                              const GrRay& common) {
+  // Culling needs every hit at t > 0 in front of the origin (packet_culling.h).
+  if (!allowed || !(common.tmin >= 0.0f)) return GrCullFrame{};
+  const glm::vec3 origin(common.ox, common.oy, common.oz);
+  const std::vector<GrCullBox>& boxes = cull_cache_.boxes(frame, origin, grid_.pe_triangles);
+  if (cull_cache_.generation() != cull_uploaded_) {
+    cull_boxes_.uploadNow(rt_, boxes);
+    cull_uploaded_ = cull_cache_.generation();
+  }
+  return frame;
+}
+
 void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const RayBundles& bundles,
                                          HitMode mode, std::vector<GrHit>& hits,
-                                         RayDiagnostics* diagnostics) {
+                                         RayDiagnostics* diagnostics,
+                                         const GrCullFrame* cull_frame) {
   const size_t n = rays.size();
   hits.resize(n);
   const size_t slots = bundles.ray_of.size();
@@ -193,8 +208,10 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     return r.ox == common.ox && r.oy == common.oy && r.oz == common.oz &&
            r.tmin == common.tmin && r.tmax == common.tmax;
   };
-  int differing = 0;
-#pragma omp parallel for schedule(static) reduction(+ : differing)
+  // Rays off the culling frame's forward (and padding, zero) count as uncovered.
+  const GrCullFrame frame = cull_frame ? *cull_frame : GrCullFrame{};
+  int differing = 0, uncovered = 0;
+#pragma omp parallel for schedule(static) reduction(+ : differing, uncovered)
   for (long long b = 0; b < (long long)stride; ++b) {
     const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
     const GrRay ray = r >= 0 ? rays[r] : common;
@@ -202,6 +219,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     planes[GR_PLANE_DY * stride + b] = r >= 0 ? ray.dy : 0.0f;
     planes[GR_PLANE_DZ * stride + b] = r >= 0 ? ray.dz : 0.0f;
     differing += !sameStart(ray);
+    uncovered += r >= 0 && !cullFrameCovers(frame, ray);
   }
   const bool common_origin = differing == 0;
   if (!common_origin) {
@@ -245,6 +263,8 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     k.setArg(arg++, first_hit_key_.get());
     k.setArg(arg++, mode == HitMode::AnyHit ? 1 : 0);
     k.setArg(arg++, interrupt_ ? 1 : 0);
+    k.setArg(arg++, prepareCulling(cull_frame && uncovered == 0 && common_origin, frame, common));
+    k.setArg(arg++, cull_boxes_.reserve(rt_, 1));
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange,
                                      cl::NDRange(bundles.tasks.size() * kPeLocalSize),
                                      cl::NDRange(kPeLocalSize));

@@ -7,6 +7,7 @@
 #include "device_buffer.h"
 #include "intersector.h"
 #include "light_bundles.h"
+#include "packet_culling.h"
 #include "pe_binning.h"
 #include "ray_bundles.h"
 #include "traversal_lists.h"
@@ -90,14 +91,25 @@ class GridRtIntersector : public Intersector {
                    size_t pairs, uint64_t skipped);
   // The bundle path: rays in bundle order, one work-group per task, then phase 2 over
   // the packets' masks (the first PE of a ray's list with a hit holds its smallest t).
+  // cull_frame (may be null): packet culling (packet_culling.h) on that frame, used when
+  // the rays share an origin and the frame covers them all.
   void intersectBundles(const std::vector<GrRay>& rays, const RayBundles& bundles,
-                        HitMode mode, std::vector<GrHit>& hits, RayDiagnostics* diagnostics);
+                        HitMode mode, std::vector<GrHit>& hits, RayDiagnostics* diagnostics,
+                        const GrCullFrame* cull_frame = nullptr);
+  // The frame the kernel gets for this batch (enabled 0 unless culling is allowed: common
+  // origin, every ray covered by the frame); uploads the PE triangles' boxes when they
+  // changed.
+  GrCullFrame prepareCulling(bool allowed, const GrCullFrame& frame, const GrRay& common);
   RayBundles camera_bundles_;
   CameraBundleScratch camera_scratch_;
   bool force_light_bundles_ = false;
   RayBundles light_bundles_;
   LightBundleScratch light_scratch_;
   std::vector<std::vector<int>> thread_pe_pairs_;  // per thread, pairs per PE
+  // Packet culling: the PE triangles' boxes (in pe_triangles order) and their device copy.
+  CullBoxCache cull_cache_;
+  unsigned cull_uploaded_ = ~0u;  // generation of the boxes on the device
+  DeviceBuffer<GrCullBox> cull_boxes_{"the culling boxes", CL_MEM_READ_ONLY};
   DeviceBuffer<int> voxel_of_pe_{"the PE voxels", CL_MEM_READ_ONLY};
   DeviceBuffer<float> planes_{"the ray bundle", CL_MEM_READ_ONLY};
   DeviceBuffer<GrBundleTask> bundle_tasks_{"the bundle tasks", CL_MEM_READ_ONLY};

@@ -41,6 +41,20 @@ inline int gr_lane_bits16(int16 mask) {
   return b2.x | b2.y;
 }
 
+/* The smallest and largest of 16 lanes, folded by halves. */
+inline float gr_lane_min16(float16 x) {
+  float8 m8 = fmin(x.lo, x.hi);
+  float4 m4 = fmin(m8.lo, m8.hi);
+  float2 m2 = fmin(m4.lo, m4.hi);
+  return fmin(m2.x, m2.y);
+}
+inline float gr_lane_max16(float16 x) {
+  float8 m8 = fmax(x.lo, x.hi);
+  float4 m4 = fmax(m8.lo, m8.hi);
+  float2 m2 = fmax(m4.lo, m4.hi);
+  return fmax(m2.x, m2.y);
+}
+
 /* One packet: 16 consecutive rays of a task against the PE's voxel and triangles, writing
  * its masks and, where a lane hits, its closest in-voxel hit. Always inlined, so that for
  * camera rays (origin and interval splats of one ray) the compiler folds every operation
@@ -50,7 +64,8 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
     const GrRays16* r, float16 tmin, float16 tmax, int16 in_task, int first, int out,
     float lox, float hix, float loy, float hiy, float loz, float hiz,
     __global const GrTriangle* pe_tris, int begin, int end, __global float* results,
-    int lanes, __global int* first_hit_key, int any_hit, int interrupt) {
+    int lanes, __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
+    __global const GrCullBox* cull_boxes) {
   /* One result buffer (one map on the host): t, prim, u, v planes of `lanes` each, then
    * one GrPacketMasks per packet. */
   __global float* out_t = results;
@@ -80,10 +95,23 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
   m.skipped = 0;
   m.pad = 0;
   if (any(active)) {
+    /* The active lanes' box on the culling frame's tangent plane (host/packet_culling.h);
+     * the host enables culling only when every ray has d.f > 0. */
+    float4 packet_box = (float4)0.0f;
+    if (cull.enabled != 0.0f) {
+      float16 w = r->dx * cull.fx + r->dy * cull.fy + r->dz * cull.fz;
+      float16 a = (r->dx * cull.rx + r->dy * cull.ry + r->dz * cull.rz) / w;
+      float16 b = (r->dx * cull.ux + r->dy * cull.uy + r->dz * cull.uz) / w;
+      packet_box = (float4)(gr_lane_min16(select((float16)INFINITY, a, active)),
+                            gr_lane_max16(select((float16)-INFINITY, a, active)),
+                            gr_lane_min16(select((float16)INFINITY, b, active)),
+                            gr_lane_max16(select((float16)-INFINITY, b, active)));
+    }
     float16 best_t, best_u, best_v;
     int16 best_prim;
     gr_pe_closest16(r, pe_tris, begin, end, tmin, tmax, t_enter, t_exit, active, any_hit,
-                    &best_t, &best_u, &best_v, &best_prim);
+                    &best_t, &best_u, &best_v, &best_prim, cull_boxes, packet_box,
+                    cull.enabled != 0.0f);
     m.hit = gr_lane_bits16(best_prim >= 0);
     if (m.hit) {
       vstore16(best_t, 0, out_t + out);
@@ -109,7 +137,8 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
                    GrGridInfo grid, __global const int* voxel_of_pe,
                    __global const int* pe_tri_begin, __global const GrTriangle* pe_tris,
                    __global float* results, int lanes,
-                   __global int* first_hit_key, int any_hit, int interrupt) {
+                   __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
+                   __global const GrCullBox* cull_boxes) {
   const GrBundleTask task = tasks[get_group_id(0)];
   const int voxel = voxel_of_pe[task.pe];
   const int vx = voxel % grid.nx, vy = (voxel / grid.nx) % grid.ny, vz = voxel / (grid.nx * grid.ny);
@@ -119,6 +148,9 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
   const int begin = pe_tri_begin[task.pe], end = pe_tri_begin[task.pe + 1];
   const int packets = (task.ray_count + LANES - 1) / LANES;
   const int16 lane = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  /* Culling needs a common origin; rays with their own origins never cull. */
+  GrCullFrame no_cull = cull;
+  no_cull.enabled = 0.0f;
 
   for (int p = get_local_id(0); p < packets; p += GR_PE_LOCAL_SIZE) {
     const int first = task.first_ray + p * LANES;
@@ -137,7 +169,7 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
       r.oz = common.oz;
       gr_bundle_packet(&r, (float16)common.tmin, (float16)common.tmax, in_task, first, out,
                        lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results, lanes,
-                       first_hit_key, any_hit, interrupt);
+                       first_hit_key, any_hit, interrupt, cull, cull_boxes);
     } else {
       r.ox = vload16(0, planes + GR_PLANE_OX * stride + first);
       r.oy = vload16(0, planes + GR_PLANE_OY * stride + first);
@@ -145,7 +177,7 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
       gr_bundle_packet(&r, vload16(0, planes + GR_PLANE_TMIN * stride + first),
                        vload16(0, planes + GR_PLANE_TMAX * stride + first), in_task, first,
                        out, lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results,
-                       lanes, first_hit_key, any_hit, interrupt);
+                       lanes, first_hit_key, any_hit, interrupt, no_cull, cull_boxes);
     }
   }
 }

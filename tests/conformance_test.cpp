@@ -222,6 +222,47 @@ INSTANTIATE_TEST_SUITE_P(Conformance, ProjectScenes,
                            return n.substr(0, n.find('.'));
                          });
 
+// Packet culling (host/packet_culling.h) on the camera path, where its argument is most
+// strained: cameras inside the bunny (triangles straddle the camera plane, some nearly
+// edge-on, very close to the eye) and one grazing its surface, for both triangle tests.
+TEST_F(Conformance, CameraPathWithPacketCullingFromInsideAndGrazing) {
+  Scene scene = loadGltfFile(test::sharedScene("bunny_res2.glb"));
+  const Bounds b = sceneBounds(scene);
+  const glm::vec3 c = b.center(), e = b.extent();
+  const Camera cameras[] = {
+      lookAtCamera(c, c + glm::vec3(0, 0, -1), 1.4f),
+      lookAtCamera(c, c + glm::vec3(1, 0.3f, 0.2f), 0.9f),
+      lookAtCamera(c + glm::vec3(0.3f, -0.2f, 0.1f) * e, c + glm::vec3(0, 1, 0) * e, 1.2f),
+      // Along the top of the box, looking across the back: grazing the surface.
+      lookAtCamera(c + glm::vec3(-0.6f, 0.05f, 0.0f) * e, c + glm::vec3(0.6f, 0.05f, 0.0f) * e,
+                   0.5f)};
+  const int w = 160, h = 120;
+  for (bool watertight : {false, true}) {
+    KernelOptions options;
+    options.watertight = watertight;
+    const auto tris = prepareTriangles(scene, options);
+    BruteIntersector brute(*runtime_, tris, options);
+    const UniformGrid grid = buildUniformGrid(tris, b, GridSettings{});
+    GridRtIntersector gridrt(*runtime_, grid, false, options);
+    for (size_t k = 0; k < std::size(cameras); ++k) {
+      std::vector<GrRay> rays;
+      for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) rays.push_back(cameraRay(cameras[k], w, h, i, j, 0.5f, 0.5f));
+      const PinholeView view = PinholeView::of(cameras[k], w, h, PixelWindow{});
+      std::vector<GrHit> want, got;
+      brute.intersect(rays, HitMode::Closest, want, nullptr);
+      gridrt.intersectPrimary(view, rays, got, nullptr);
+      size_t hits = 0;
+      for (const GrHit& hit : want) hits += hit.prim >= 0;
+      EXPECT_GT(hits, rays.size() / 10) << "camera " << k;
+      EXPECT_EQ(test::hitMismatches(want, got,
+                                    std::string(watertight ? "watertight" : "mt") + " camera " +
+                                        std::to_string(k)),
+                0u);
+    }
+  }
+}
+
 TEST_F(Conformance, BuiltInDefaultSceneMatchesBrute) {
   checkScene(makeDefaultScene(), "default scene", 320, 240);
 }

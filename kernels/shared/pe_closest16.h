@@ -2,7 +2,10 @@
  * keeps its closest hit among the PE's triangles [begin, end) that lies in (tmin, tmax)
  * and INSIDE the voxel (t_enter <= t <= t_exit). On equal t the earlier triangle (lower
  * global index: a PE's triangles are in global order) stays. With any_hit the loop stops
- * once every active lane has a hit. best_prim is -1 where a lane found none. */
+ * once every active lane has a hit. best_prim is -1 where a lane found none.
+ * With cull, triangle i is skipped when cull_boxes[i] misses packet_box (amin, amax, bmin,
+ * bmax of the active lanes on the tangent plane; host/packet_culling.h): the boxes are
+ * grown by the test's rounding, so no triangle a lane could hit is skipped. */
 #ifndef GRIDRT_PE_CLOSEST16_H
 #define GRIDRT_PE_CLOSEST16_H
 #include "gridrt_types.h"
@@ -11,22 +14,45 @@
 inline __attribute__((always_inline)) void gr_pe_closest16(const GrRays16* r, __global const GrTriangle* tris, int begin,
                             int end, float16 tmin, float16 tmax, float16 t_enter,
                             float16 t_exit, int16 active, int any_hit, float16* best_t_out,
-                            float16* best_u_out, float16* best_v_out, int16* best_prim_out) {
+                            float16* best_u_out, float16* best_v_out, int16* best_prim_out,
+                            __global const GrCullBox* cull_boxes, float4 packet_box, int cull) {
   float16 best_t = tmax, best_u = 0.0f, best_v = 0.0f;
   int16 best_prim = -1;
-  for (int i = begin; i < end; ++i) {
-    GrTriangle tri = tris[i];
-    float16 t, u, v;
-    int16 hit = gr_intersect16(r, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z,
-                               tri.e2x, tri.e2y, tri.e2z, &t, &u, &v);
-    /* The in-voxel rule: without it a triangle spanning voxels could win in a PE that
-     * comes before the voxel where its hit really lies. */
-    hit &= active & (t > tmin) & (t < best_t) & (t >= t_enter) & (t <= t_exit);
-    best_t = select(best_t, t, hit);
-    best_u = select(best_u, u, hit);
-    best_v = select(best_v, v, hit);
-    best_prim = select(best_prim, (int16)tri.prim, hit);
-    if (any_hit && all((best_prim >= 0) | (active == 0))) break;
+  /* Triangles go in chunks of 32: first a mask of the ones to test (built without
+   * branches: a culling decision per triangle would be a mispredicted branch about as
+   * dear as the test it saves), then the set bits in increasing order (the tie rule). */
+  for (int chunk = begin; chunk < end; chunk += 32) {
+    const int n = min(32, end - chunk);
+    uint todo = n == 32 ? 0xFFFFFFFFu : (1u << n) - 1u;
+    if (cull) {
+      uint keep = 0;
+      for (int j = 0; j < n; ++j) {
+        const GrCullBox c = cull_boxes[chunk + j];
+        const int miss = (c.amax < packet_box.s0) | (c.amin > packet_box.s1) |
+                         (c.bmax < packet_box.s2) | (c.bmin > packet_box.s3);
+        keep |= (uint)(miss == 0) << j;
+      }
+      todo &= keep;
+    }
+    while (todo) {
+      const int i = chunk + 31 - clz(todo & (0u - todo));
+      todo &= todo - 1u;
+      GrTriangle tri = tris[i];
+      float16 t, u, v;
+      int16 hit = gr_intersect16(r, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z,
+                                 tri.e2x, tri.e2y, tri.e2z, &t, &u, &v);
+      /* The in-voxel rule: without it a triangle spanning voxels could win in a PE that
+       * comes before the voxel where its hit really lies. */
+      hit &= active & (t > tmin) & (t < best_t) & (t >= t_enter) & (t <= t_exit);
+      best_t = select(best_t, t, hit);
+      best_u = select(best_u, u, hit);
+      best_v = select(best_v, v, hit);
+      best_prim = select(best_prim, (int16)tri.prim, hit);
+      if (any_hit && all((best_prim >= 0) | (active == 0))) {
+        chunk = end; /* done: leave both loops */
+        break;
+      }
+    }
   }
   *best_t_out = best_t;
   *best_u_out = best_u;

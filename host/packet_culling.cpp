@@ -1,0 +1,110 @@
+#include "packet_culling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "prepared_triangles.h"
+
+namespace gridrt {
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr GrCullBox kUnculled{-kInf, kInf, -kInf, kInf};
+
+glm::dvec3 forwardOf(const GrCullFrame& f) { return {f.fx, f.fy, f.fz}; }
+glm::dvec3 rightOf(const GrCullFrame& f) { return {f.rx, f.ry, f.rz}; }
+glm::dvec3 upOf(const GrCullFrame& f) { return {f.ux, f.uy, f.uz}; }
+
+// Float bounds that contain [lo, hi] (rounded outwards).
+float floatBelow(double x) {
+  float f = float(x);
+  return double(f) > x ? std::nextafter(f, -kInf) : f;
+}
+float floatAbove(double x) {
+  float f = float(x);
+  return double(f) < x ? std::nextafter(f, kInf) : f;
+}
+
+GrCullBox boxOf(const GrCullFrame& frame, const glm::dvec3& origin, const glm::dvec3 v[3],
+                double error_factor) {
+  const glm::dvec3 f = forwardOf(frame), r = rightOf(frame), u = upOf(frame);
+  double a[3], b[3], z_min = std::numeric_limits<double>::infinity(), far = 0.0;
+  glm::dvec3 w[3];
+  for (int i = 0; i < 3; ++i) {
+    w[i] = v[i] - origin;
+    far = std::max(far, glm::length(w[i]));
+  }
+  for (int i = 0; i < 3; ++i) {
+    const double z = glm::dot(w[i], f);
+    if (!(z > kCullMinDepth * far)) return kUnculled;
+    z_min = std::min(z_min, z);
+    a[i] = glm::dot(w[i], r) / z;
+    b[i] = glm::dot(w[i], u) / z;
+  }
+  const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
+  const double edge = std::max({glm::length(v[1] - v[0]), glm::length(v[2] - v[0]),
+                                glm::length(v[2] - v[1])});
+  const double incidence = std::abs(glm::dot(n, w[0]));
+  const double kappa = edge * edge * far / incidence;
+  double spread = 1.0;
+  for (int i = 0; i < 3; ++i) spread = std::max(spread, 1.0 + std::abs(a[i]) + std::abs(b[i]));
+  const double margin = error_factor * 0x1p-24 * kappa * (far / z_min) * spread * spread;
+  if (!(margin < 1.0)) return kUnculled;  // also NaN/inf: edge-on or degenerate
+  return GrCullBox{floatBelow(std::min({a[0], a[1], a[2]}) - margin),
+                   floatAbove(std::max({a[0], a[1], a[2]}) + margin),
+                   floatBelow(std::min({b[0], b[1], b[2]}) - margin),
+                   floatAbove(std::max({b[0], b[1], b[2]}) + margin)};
+}
+
+}  // namespace
+
+GrCullFrame cullFrameOf(const PinholeView& view) {
+  // The rows of the camera's rotation are its axes in world space; the camera looks down -z.
+  const glm::mat4& m = view.world_to_camera;
+  const glm::vec3 right = glm::normalize(glm::vec3(m[0][0], m[1][0], m[2][0]));
+  const glm::vec3 up = glm::normalize(glm::vec3(m[0][1], m[1][1], m[2][1]));
+  const glm::vec3 forward = -glm::normalize(glm::vec3(m[0][2], m[1][2], m[2][2]));
+  GrCullFrame frame{};
+  frame.fx = forward.x, frame.fy = forward.y, frame.fz = forward.z, frame.enabled = 1.0f;
+  frame.rx = right.x, frame.ry = right.y, frame.rz = right.z;
+  frame.ux = up.x, frame.uy = up.y, frame.uz = up.z;
+  return frame;
+}
+
+void cullCoordinates(const GrCullFrame& c, float dx, float dy, float dz, float& a, float& b) {
+  const float w = dx * c.fx + dy * c.fy + dz * c.fz;
+  a = (dx * c.rx + dy * c.ry + dz * c.rz) / w;
+  b = (dx * c.ux + dy * c.uy + dz * c.uz) / w;
+}
+
+void computeCullBoxes(const GrCullFrame& frame, const glm::vec3& origin,
+                      const std::vector<GrTriangle>& triangles, std::vector<GrCullBox>& boxes,
+                      double error_factor) {
+  boxes.resize(triangles.size());
+  const glm::dvec3 o(origin);
+#pragma omp parallel for schedule(static)
+  for (long long k = 0; k < (long long)triangles.size(); ++k) {
+    glm::dvec3 v[3];
+    triangleVertices(triangles[k], v);
+    boxes[k] = boxOf(frame, o, v, error_factor);
+  }
+}
+
+const std::vector<GrCullBox>& CullBoxCache::boxes(const GrCullFrame& frame,
+                                                  const glm::vec3& origin,
+                                                  const std::vector<GrTriangle>& triangles) {
+  if (!valid_ || std::memcmp(&frame, &frame_, sizeof frame) != 0 || origin != origin_ ||
+      boxes_.size() != triangles.size()) {
+    computeCullBoxes(frame, origin, triangles, boxes_);
+    frame_ = frame;
+    origin_ = origin;
+    valid_ = true;
+    ++generation_;
+  }
+  return boxes_;
+}
+
+}  // namespace gridrt
