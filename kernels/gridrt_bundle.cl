@@ -31,16 +31,6 @@ inline void gr_slab16(float16 o, float16 d, float16 inv, float lo, float hi, flo
   *t1 = select(fmin(*t1, fmax(a, b)), *t1, zero);
 }
 
-/* The lanes of a mask (-1 per lane) as 16 bits, lane k in bit k. OpenCL C 1.2 has no
- * horizontal reduction: the disjoint bits are folded by halves. */
-inline int gr_lane_bits16(int16 mask) {
-  int16 b = mask & ((int16)1 << (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
-  int8 b8 = b.lo | b.hi;
-  int4 b4 = b8.lo | b8.hi;
-  int2 b2 = b4.lo | b4.hi;
-  return b2.x | b2.y;
-}
-
 /* The smallest and largest of 16 lanes, folded by halves. */
 inline float gr_lane_min16(float16 x) {
   float8 m8 = fmin(x.lo, x.hi);
@@ -65,7 +55,7 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
     float lox, float hix, float loy, float hiy, float loz, float hiz,
     __global const GrTriangle* pe_tris, int begin, int end, __global float* results,
     int lanes, __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
-    __global const GrCullBox* cull_boxes) {
+    __global const float* cull_planes, int cull_stride) {
   /* One result buffer (one map on the host): t, prim, u, v planes of `lanes` each, then
    * one GrPacketMasks per packet. */
   __global float* out_t = results;
@@ -110,7 +100,7 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
     float16 best_t, best_u, best_v;
     int16 best_prim;
     gr_pe_closest16(r, pe_tris, begin, end, tmin, tmax, t_enter, t_exit, active, any_hit,
-                    &best_t, &best_u, &best_v, &best_prim, cull_boxes, packet_box,
+                    &best_t, &best_u, &best_v, &best_prim, cull_planes, cull_stride, packet_box,
                     cull.enabled != 0.0f);
     m.hit = gr_lane_bits16(best_prim >= 0);
     if (m.hit) {
@@ -138,7 +128,7 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
                    __global const int* pe_tri_begin, __global const GrTriangle* pe_tris,
                    __global float* results, int lanes,
                    __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
-                   __global const GrCullBox* cull_boxes) {
+                   __global const float* cull_planes, int cull_stride) {
   const GrBundleTask task = tasks[get_group_id(0)];
   const int voxel = voxel_of_pe[task.pe];
   const int vx = voxel % grid.nx, vy = (voxel / grid.nx) % grid.ny, vz = voxel / (grid.nx * grid.ny);
@@ -169,7 +159,7 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
       r.oz = common.oz;
       gr_bundle_packet(&r, (float16)common.tmin, (float16)common.tmax, in_task, first, out,
                        lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results, lanes,
-                       first_hit_key, any_hit, interrupt, cull, cull_boxes);
+                       first_hit_key, any_hit, interrupt, cull, cull_planes, cull_stride);
     } else {
       r.ox = vload16(0, planes + GR_PLANE_OX * stride + first);
       r.oy = vload16(0, planes + GR_PLANE_OY * stride + first);
@@ -177,7 +167,7 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
       gr_bundle_packet(&r, vload16(0, planes + GR_PLANE_TMIN * stride + first),
                        vload16(0, planes + GR_PLANE_TMAX * stride + first), in_task, first,
                        out, lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results,
-                       lanes, first_hit_key, any_hit, interrupt, no_cull, cull_boxes);
+                       lanes, first_hit_key, any_hit, interrupt, no_cull, cull_planes, cull_stride);
     }
   }
 }

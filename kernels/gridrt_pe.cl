@@ -60,7 +60,7 @@ void gridrt_pe(__global const GrPeTask* tasks, __global const GrPeEntry* entries
   int16 best_prim;
   gr_pe_closest16(&r16, pe_tris, pe_tri_begin[task.pe], pe_tri_begin[task.pe + 1], tmin, tmax,
                   t_enter, t_exit, active, any_hit, &best_t, &best_u, &best_v, &best_prim,
-                  (__global const GrCullBox*)0, (float4)0.0f, 0);
+                  (__global const float*)0, 0, (float4)0.0f, 0);
   float o_t[LANES], o_u[LANES], o_v[LANES];
   int o_p[LANES];
   vstore16(best_t, 0, o_t); vstore16(best_u, 0, o_u); vstore16(best_v, 0, o_v);

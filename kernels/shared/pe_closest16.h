@@ -3,7 +3,7 @@
  * and INSIDE the voxel (t_enter <= t <= t_exit). On equal t the earlier triangle (lower
  * global index: a PE's triangles are in global order) stays. With any_hit the loop stops
  * once every active lane has a hit. best_prim is -1 where a lane found none.
- * With cull, triangle i is skipped when cull_boxes[i] misses packet_box (amin, amax, bmin,
+ * With cull, triangle i is skipped when its box (cull_planes) misses packet_box (amin, amax, bmin,
  * bmax of the active lanes on the tangent plane; host/packet_culling.h): the boxes are
  * grown by the test's rounding, so no triangle a lane could hit is skipped. */
 #ifndef GRIDRT_PE_CLOSEST16_H
@@ -11,28 +11,39 @@
 #include "gridrt_types.h"
 #include "ray_triangle16.h"
 
+/* The lanes of a mask (-1 per lane) as 16 bits, lane k in bit k. OpenCL C 1.2 has no
+ * horizontal reduction: the disjoint bits are folded by halves. */
+inline int gr_lane_bits16(int16 mask) {
+  int16 b = mask & ((int16)1 << (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
+  int8 b8 = b.lo | b.hi;
+  int4 b4 = b8.lo | b8.hi;
+  int2 b2 = b4.lo | b4.hi;
+  return b2.x | b2.y;
+}
+
 inline __attribute__((always_inline)) void gr_pe_closest16(const GrRays16* r, __global const GrTriangle* tris, int begin,
                             int end, float16 tmin, float16 tmax, float16 t_enter,
                             float16 t_exit, int16 active, int any_hit, float16* best_t_out,
                             float16* best_u_out, float16* best_v_out, int16* best_prim_out,
-                            __global const GrCullBox* cull_boxes, float4 packet_box, int cull) {
+                            __global const float* cull_planes, int cull_stride,
+                            float4 packet_box, int cull) {
   float16 best_t = tmax, best_u = 0.0f, best_v = 0.0f;
   int16 best_prim = -1;
-  /* Triangles go in chunks of 32: first a mask of the ones to test (built without
-   * branches: a culling decision per triangle would be a mispredicted branch about as
-   * dear as the test it saves), then the set bits in increasing order (the tie rule). */
-  for (int chunk = begin; chunk < end; chunk += 32) {
-    const int n = min(32, end - chunk);
-    uint todo = n == 32 ? 0xFFFFFFFFu : (1u << n) - 1u;
+  /* Triangles go in chunks of 16: first a mask of the ones to test, from 16 boxes at
+   * once (a culling branch per triangle would be a mispredicted branch about as dear as
+   * the test it saves), then the set bits in increasing order (the tie rule). */
+  for (int chunk = begin; chunk < end; chunk += 16) {
+    const int n = min(16, end - chunk);
+    uint todo = (1u << n) - 1u;
     if (cull) {
-      uint keep = 0;
-      for (int j = 0; j < n; ++j) {
-        const GrCullBox c = cull_boxes[chunk + j];
-        const int miss = (c.amax < packet_box.s0) | (c.amin > packet_box.s1) |
-                         (c.bmax < packet_box.s2) | (c.bmin > packet_box.s3);
-        keep |= (uint)(miss == 0) << j;
-      }
-      todo &= keep;
+      /* Box planes (amin, amax, bmin, bmax), each cull_stride long and padded by 16. */
+      const float16 amin = vload16(0, cull_planes + chunk);
+      const float16 amax = vload16(0, cull_planes + cull_stride + chunk);
+      const float16 bmin = vload16(0, cull_planes + 2 * cull_stride + chunk);
+      const float16 bmax = vload16(0, cull_planes + 3 * cull_stride + chunk);
+      const int16 miss = (amax < packet_box.s0) | (amin > packet_box.s1) |
+                         (bmax < packet_box.s2) | (bmin > packet_box.s3);
+      todo &= ~(uint)gr_lane_bits16(miss);
     }
     while (todo) {
       const int i = chunk + 31 - clz(todo & (0u - todo));
