@@ -36,6 +36,7 @@ void BruteIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
     size_t global = (items + kLocalSize - 1) / kLocalSize * kLocalSize;
     rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global),
                                      cl::NDRange(kLocalSize));
+    rt_.finishWithHostThreadsAsleep();
     hits_.download(rt_, hits.data(), n);
   }
   counters_.rays += n;

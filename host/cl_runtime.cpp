@@ -194,6 +194,14 @@ cl::Program& ClRuntime::program(const std::string& file, const std::string& defi
   return programs_.emplace(key, program).first->second;
 }
 
+void ClRuntime::finishWithHostThreadsAsleep() {
+  cl::Event marker;
+  queue_.enqueueMarkerWithWaitList(nullptr, &marker);
+  queue_.flush();
+#pragma omp parallel
+  marker.wait();
+}
+
 void ClRuntime::checkAllocation(size_t bytes, const std::string& what) const {
   if (bytes > info_.max_alloc_bytes)
     throw RenderError(what + " needs " + std::to_string(bytes >> 20) + " MiB in one buffer, " +

@@ -52,6 +52,11 @@ class ClRuntime {
   // Throws RenderError naming `what` if a buffer of `bytes` exceeds the device's limits.
   void checkAllocation(size_t bytes, const std::string& what) const;
 
+  // Runs everything queued so far and waits for it with every OpenMP thread of the host
+  // asleep in the wait: an idle OpenMP worker otherwise spins (libgomp's default spin
+  // lasts milliseconds) on the cores a CPU device's own threads run the kernel on.
+  void finishWithHostThreadsAsleep();
+
  private:
   DeviceInfo info_;
   cl::Device device_;

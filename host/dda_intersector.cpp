@@ -42,6 +42,7 @@ void DdaIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
     size_t global = (n + kLocalSize - 1) / kLocalSize * kLocalSize;
     rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global),
                                      cl::NDRange(kLocalSize));
+    rt_.finishWithHostThreadsAsleep();
     hits_.download(rt_, hits.data(), n);
     tests_.download(rt_, tests_host_.data(), n);
   }

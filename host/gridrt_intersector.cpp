@@ -57,6 +57,7 @@ void GridRtIntersector::runPes(const std::vector<GrRay>& rays,
   rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
                                    cl::NDRange(tasks.size() * kPeLocalSize),
                                    cl::NDRange(kPeLocalSize));
+  rt_.finishWithHostThreadsAsleep();
   slot_hits_ = static_cast<const GrHit*>(rt_.queue().enqueueMapBuffer(
       slot_hits_dev_.get(), CL_TRUE, CL_MAP_READ, 0, slots * sizeof(GrHit)));
 }
@@ -280,6 +281,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange,
                                      cl::NDRange(bundles.tasks.size() * kPeLocalSize),
                                      cl::NDRange(kPeLocalSize));
+    rt_.finishWithHostThreadsAsleep();
     results = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
     out_t = results;
     out_prim = reinterpret_cast<const int*>(results + lanes);
