@@ -13,10 +13,13 @@ namespace gridrt {
 // Default lambda of the auto resolution R_i = d_i * cbrt(lambda * N / V): about lambda
 // triangles per voxel volume; tune with --grid-density. Cleary & Wyvill and pbrt-v1
 // recommend 3..5, but with packet culling a triangle a packet cannot hit costs a compare,
-// so fewer, fuller voxels (fewer packets) win. Measured (A/B medians of 3, frame ms,
-// lambda 4 / 1 / 0.5 / 0.25): bunny 1280x960 primary 77 / 66 / 62 / 60, teapot 1280x960
-// 70 / 53 / 56 / 54, bunny 640x480 Whitted 84 / 64 / 59 / -, default scene within noise.
-constexpr float kDefaultGridDensity = 0.5f;
+// so fewer, fuller voxels (fewer packets) win on the camera path; the list path (no
+// culling) prefers finer voxels. Measured (frame ms, medians of settings alternated in
+// one loop), lambda 4 -> 0.5: bunny 1280x960 primary 77 -> 62, teapot 70 -> 56, bunny
+// Whitted 640x480 84 -> 59, default scene within noise; then lambda 0.5 -> 0.1: bunny
+// 1280x960 primary 41.9 -> 37.4, bunny_res4 320x240 2.95 -> 2.79, bunny Whitted 45.9 ->
+// 39.8, teapot 42.9 -> 42.8, default scene 145 -> 144 (0.05 makes it 159).
+constexpr float kDefaultGridDensity = 0.1f;
 
 // The grid box is the scene box grown by a margin, and every voxel is tested for overlap
 // grown by the same margin, so a triangle within `margin` of a voxel is listed in it.
