@@ -220,7 +220,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     return r.ox == common.ox && r.oy == common.oy && r.oz == common.oz &&
            r.tmin == common.tmin && r.tmax == common.tmax;
   };
-  // Rays off the culling frame's forward (and padding, zero) count as uncovered.
+  // Rays off the culling frame's forward count as uncovered (padding does not count).
   const GrCullFrame frame = cull_frame ? *cull_frame : GrCullFrame{};
   int differing = 0, uncovered = 0;
 #pragma omp parallel for schedule(static) reduction(+ : differing, uncovered)

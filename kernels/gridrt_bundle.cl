@@ -100,8 +100,8 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
     float16 best_t, best_u, best_v;
     int16 best_prim;
     gr_pe_closest16(r, pe_tris, begin, end, tmin, tmax, t_enter, t_exit, active, any_hit,
-                    &best_t, &best_u, &best_v, &best_prim, cull_planes, cull_stride, packet_box,
-                    cull.enabled != 0.0f);
+                    &best_t, &best_u, &best_v, &best_prim, cull_planes, cull_stride,
+                    packet_box, cull.enabled != 0.0f);
     m.hit = gr_lane_bits16(best_prim >= 0);
     if (m.hit) {
       vstore16(best_t, 0, out_t + out);
@@ -167,7 +167,8 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
       gr_bundle_packet(&r, vload16(0, planes + GR_PLANE_TMIN * stride + first),
                        vload16(0, planes + GR_PLANE_TMAX * stride + first), in_task, first,
                        out, lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results,
-                       lanes, first_hit_key, any_hit, interrupt, no_cull, cull_planes, cull_stride);
+                       lanes, first_hit_key, any_hit, interrupt, no_cull, cull_planes,
+                       cull_stride);
     }
   }
 }

@@ -21,12 +21,11 @@ inline int gr_lane_bits16(int16 mask) {
   return b2.x | b2.y;
 }
 
-inline __attribute__((always_inline)) void gr_pe_closest16(const GrRays16* r, __global const GrTriangle* tris, int begin,
-                            int end, float16 tmin, float16 tmax, float16 t_enter,
-                            float16 t_exit, int16 active, int any_hit, float16* best_t_out,
-                            float16* best_u_out, float16* best_v_out, int16* best_prim_out,
-                            __global const float* cull_planes, int cull_stride,
-                            float4 packet_box, int cull) {
+inline __attribute__((always_inline)) void gr_pe_closest16(
+    const GrRays16* r, __global const GrTriangle* tris, int begin, int end, float16 tmin,
+    float16 tmax, float16 t_enter, float16 t_exit, int16 active, int any_hit,
+    float16* best_t_out, float16* best_u_out, float16* best_v_out, int16* best_prim_out,
+    __global const float* cull_planes, int cull_stride, float4 packet_box, int cull) {
   float16 best_t = tmax, best_u = 0.0f, best_v = 0.0f;
   int16 best_prim = -1;
   /* Triangles go in chunks of 16: first a mask of the ones to test, from 16 boxes at
