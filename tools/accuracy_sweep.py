@@ -95,7 +95,7 @@ def main(argv=None):
     p.add_argument("--binary", default=default_binary())
     p.add_argument("--scenes", nargs="*", default=[os.path.join(ROOT, "scenes/default.gltf")])
     p.add_argument("--scale-scene", default=os.path.join(ROOT, "scenes/default.gltf"))
-    p.add_argument("--densities", nargs="*", type=float, default=[0.5, 1, 2, 4, 8])
+    p.add_argument("--densities", nargs="*", type=float, default=[0.1, 0.25, 0.5, 1, 4])
     p.add_argument("--spp", nargs="*", type=int, default=[1, 4])
     p.add_argument("--scales", nargs="*", type=float, default=[1e-4, 1e-2, 1, 1e2, 1e4])
     p.add_argument("--size", default="160x120")
