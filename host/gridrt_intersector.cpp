@@ -179,22 +179,8 @@ GrCullFrame GridRtIntersector::prepareCulling(bool allowed, const GrCullFrame& f
   // Culling needs every hit at t > 0 in front of the origin (packet_culling.h).
   if (!allowed || !(common.tmin >= 0.0f)) return GrCullFrame{};
   const glm::vec3 origin(common.ox, common.oy, common.oz);
-  const std::vector<GrCullBox>& boxes = cull_cache_.boxes(frame, origin, grid_.pe_triangles);
-  if (cull_cache_.generation() != cull_uploaded_) {
-    // As four planes (amin, amax, bmin, bmax) padded by 16, which the kernel reads 16
-    // triangles at a time.
-    const size_t stride = cullPlaneStride();
-    cull_planes_host_.assign(4 * stride, 0.0f);
-#pragma omp parallel for schedule(static)
-    for (long long i = 0; i < (long long)boxes.size(); ++i) {
-      cull_planes_host_[i] = boxes[i].amin;
-      cull_planes_host_[stride + i] = boxes[i].amax;
-      cull_planes_host_[2 * stride + i] = boxes[i].bmin;
-      cull_planes_host_[3 * stride + i] = boxes[i].bmax;
-    }
-    cull_planes_.uploadNow(rt_, cull_planes_host_);
-    cull_uploaded_ = cull_cache_.generation();
-  }
+  if (cull_cache_.update(frame, origin, grid_.pe_triangles))
+    cull_planes_.uploadNow(rt_, cull_cache_.planes());
   return frame;
 }
 
@@ -277,7 +263,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     k.setArg(arg++, interrupt_ ? 1 : 0);
     k.setArg(arg++, prepareCulling(cull_frame && uncovered == 0 && common_origin, frame, common));
     k.setArg(arg++, cull_planes_.reserve(rt_, 1));
-    k.setArg(arg++, int(cullPlaneStride()));
+    k.setArg(arg++, int(cull_cache_.stride()));
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange,
                                      cl::NDRange(bundles.tasks.size() * kPeLocalSize),
                                      cl::NDRange(kPeLocalSize));

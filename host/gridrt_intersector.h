@@ -106,13 +106,9 @@ class GridRtIntersector : public Intersector {
   RayBundles light_bundles_;
   LightBundleScratch light_scratch_;
   std::vector<std::vector<int>> thread_pe_pairs_;  // per thread, pairs per PE
-  // Packet culling: the PE triangles' boxes (in pe_triangles order) and their device copy
-  // (as planes).
-  CullBoxCache cull_cache_;
-  unsigned cull_uploaded_ = ~0u;  // generation of the boxes on the device
-  std::vector<float> cull_planes_host_;
+  // Packet culling: the PE triangles' boxes (in pe_triangles order) and their device copy.
+  CullPlaneCache cull_cache_;
   DeviceBuffer<float> cull_planes_{"the culling boxes", CL_MEM_READ_ONLY};
-  size_t cullPlaneStride() const { return grid_.pe_triangles.size() + kPeLanes; }
   DeviceBuffer<int> voxel_of_pe_{"the PE voxels", CL_MEM_READ_ONLY};
   DeviceBuffer<float> planes_{"the ray bundle", CL_MEM_READ_ONLY};
   DeviceBuffer<GrBundleTask> bundle_tasks_{"the bundle tasks", CL_MEM_READ_ONLY};

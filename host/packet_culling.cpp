@@ -12,7 +12,7 @@ namespace gridrt {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
-constexpr GrCullBox kUnculled{-kInf, kInf, -kInf, kInf};
+constexpr CullBox kUnculled{-kInf, kInf, -kInf, kInf};
 
 glm::dvec3 forwardOf(const GrCullFrame& f) { return {f.fx, f.fy, f.fz}; }
 glm::dvec3 rightOf(const GrCullFrame& f) { return {f.rx, f.ry, f.rz}; }
@@ -28,7 +28,7 @@ float floatAbove(double x) {
   return double(f) < x ? std::nextafter(f, kInf) : f;
 }
 
-GrCullBox boxOf(const GrCullFrame& frame, const glm::dvec3& origin, const glm::dvec3 v[3],
+CullBox boxOf(const GrCullFrame& frame, const glm::dvec3& origin, const glm::dvec3 v[3],
                 double error_factor) {
   const glm::dvec3 f = forwardOf(frame), r = rightOf(frame), u = upOf(frame);
   double a[3], b[3], z_min = std::numeric_limits<double>::infinity(), far = 0.0;
@@ -53,7 +53,7 @@ GrCullBox boxOf(const GrCullFrame& frame, const glm::dvec3& origin, const glm::d
   for (int i = 0; i < 3; ++i) spread = std::max(spread, 1.0 + std::abs(a[i]) + std::abs(b[i]));
   const double margin = error_factor * 0x1p-24 * kappa * (far / z_min) * spread * spread;
   if (!(margin < 1.0)) return kUnculled;  // also NaN/inf: edge-on or degenerate
-  return GrCullBox{floatBelow(std::min({a[0], a[1], a[2]}) - margin),
+  return CullBox{floatBelow(std::min({a[0], a[1], a[2]}) - margin),
                    floatAbove(std::max({a[0], a[1], a[2]}) + margin),
                    floatBelow(std::min({b[0], b[1], b[2]}) - margin),
                    floatAbove(std::max({b[0], b[1], b[2]}) + margin)};
@@ -81,7 +81,7 @@ void cullCoordinates(const GrCullFrame& c, float dx, float dy, float dz, float& 
 }
 
 void computeCullBoxes(const GrCullFrame& frame, const glm::vec3& origin,
-                      const std::vector<GrTriangle>& triangles, std::vector<GrCullBox>& boxes,
+                      const std::vector<GrTriangle>& triangles, std::vector<CullBox>& boxes,
                       double error_factor) {
   boxes.resize(triangles.size());
   const glm::dvec3 o(origin);
@@ -93,18 +93,25 @@ void computeCullBoxes(const GrCullFrame& frame, const glm::vec3& origin,
   }
 }
 
-const std::vector<GrCullBox>& CullBoxCache::boxes(const GrCullFrame& frame,
-                                                  const glm::vec3& origin,
-                                                  const std::vector<GrTriangle>& triangles) {
-  if (!valid_ || std::memcmp(&frame, &frame_, sizeof frame) != 0 || origin != origin_ ||
-      boxes_.size() != triangles.size()) {
-    computeCullBoxes(frame, origin, triangles, boxes_);
-    frame_ = frame;
-    origin_ = origin;
-    valid_ = true;
-    ++generation_;
+bool CullPlaneCache::update(const GrCullFrame& frame, const glm::vec3& origin,
+                            const std::vector<GrTriangle>& triangles) {
+  if (valid_ && std::memcmp(&frame, &frame_, sizeof frame) == 0 && origin == origin_ &&
+      boxes_.size() == triangles.size())
+    return false;
+  computeCullBoxes(frame, origin, triangles, boxes_);
+  const size_t stride = triangles.size() + kCullPlanePadding;
+  planes_.assign(4 * stride, 0.0f);
+#pragma omp parallel for schedule(static)
+  for (long long i = 0; i < (long long)boxes_.size(); ++i) {
+    planes_[i] = boxes_[i].amin;
+    planes_[stride + i] = boxes_[i].amax;
+    planes_[2 * stride + i] = boxes_[i].bmin;
+    planes_[3 * stride + i] = boxes_[i].bmax;
   }
-  return boxes_;
+  frame_ = frame;
+  origin_ = origin;
+  valid_ = true;
+  return true;
 }
 
 }  // namespace gridrt

@@ -34,6 +34,12 @@ constexpr double kCullErrorFactor = 64.0;
 // triangle unculled (the projection's slope is unbounded there).
 constexpr double kCullMinDepth = 1e-3;
 
+// A triangle's box on the tangent plane, grown by its rounding margin; +-infinity where
+// the triangle cannot be culled (a vertex not in front, or ill-conditioned).
+struct CullBox {
+  float amin, amax, bmin, bmax;
+};
+
 // The camera's frame (forward, right, up in world space), culling enabled.
 GrCullFrame cullFrameOf(const PinholeView& view);
 
@@ -51,24 +57,30 @@ inline bool cullFrameCovers(const GrCullFrame& f, const GrRay& ray) {
 // The conservative box of every triangle (in the order given) seen from `origin`.
 // error_factor is kCullErrorFactor but for tests.
 void computeCullBoxes(const GrCullFrame& frame, const glm::vec3& origin,
-                      const std::vector<GrTriangle>& triangles, std::vector<GrCullBox>& boxes,
+                      const std::vector<GrTriangle>& triangles, std::vector<CullBox>& boxes,
                       double error_factor = kCullErrorFactor);
 
-// The boxes of the last frame and origin, recomputed only when either changes (a camera
-// renders many frames and passes from one place).
-class CullBoxCache {
+// The padding after each plane of boxes: the PE kernel reads 16 boxes at a time, so its
+// last load of a PE may run 15 boxes past the end.
+constexpr size_t kCullPlanePadding = 16;
+
+// The boxes as the PE kernel reads them: four planes (amin, amax, bmin, bmax), each
+// stride() = triangles + kCullPlanePadding floats long. Recomputed only when the frame or the origin changes (a camera
+// renders many frames from one place).
+class CullPlaneCache {
  public:
-  const std::vector<GrCullBox>& boxes(const GrCullFrame& frame, const glm::vec3& origin,
-                                      const std::vector<GrTriangle>& triangles);
-  // Counts recomputations, so a device copy knows when it is stale.
-  unsigned generation() const { return generation_; }
+  // True when the planes were recomputed (a device copy is then stale).
+  bool update(const GrCullFrame& frame, const glm::vec3& origin,
+              const std::vector<GrTriangle>& triangles);
+  const std::vector<float>& planes() const { return planes_; }
+  size_t stride() const { return planes_.size() / 4; }
 
  private:
   bool valid_ = false;
-  unsigned generation_ = 0;
   GrCullFrame frame_{};
   glm::vec3 origin_{0.0f};
-  std::vector<GrCullBox> boxes_;
+  std::vector<CullBox> boxes_;
+  std::vector<float> planes_;
 };
 
 }  // namespace gridrt

@@ -27,7 +27,7 @@ GrCullFrame frameTowards(const glm::vec3& origin, const glm::vec3& target) {
   return frame;
 }
 
-bool inside(const GrCullBox& box, float a, float b) {
+bool inside(const CullBox& box, float a, float b) {
   return a >= box.amin && a <= box.amax && b >= box.bmin && b <= box.bmax;
 }
 
@@ -63,7 +63,7 @@ Violations countViolations(bool watertight, double error_factor) {
       tri.e2x = v[2].x - v[0].x, tri.e2y = v[2].y - v[0].y, tri.e2z = v[2].z - v[0].z;
     }
     const GrCullFrame frame = frameTowards(origin, centre);
-    std::vector<GrCullBox> boxes;
+    std::vector<CullBox> boxes;
     computeCullBoxes(frame, origin, {tri}, boxes, error_factor);
     for (int ray = 0; ray < 3000; ++ray) {
       const float scale = std::ldexp(1.0f, -10 - int(rng() % 14));
@@ -108,19 +108,19 @@ TEST(PacketCulling, TrianglesNotInFrontOrEdgeOnAreNeverCulled) {
     tri.v0x = a.x, tri.v0y = a.y, tri.v0z = a.z;
     tri.e1x = b.x - a.x, tri.e1y = b.y - a.y, tri.e1z = b.z - a.z;
     tri.e2x = c.x - a.x, tri.e2y = c.y - a.y, tri.e2z = c.z - a.z;
-    std::vector<GrCullBox> boxes;
+    std::vector<CullBox> boxes;
     computeCullBoxes(frame, origin, {tri}, boxes);
     return boxes[0];
   };
-  const GrCullBox in_front = boxOf({-1, -1, -5}, {1, -1, -5}, {0, 1, -5});
+  const CullBox in_front = boxOf({-1, -1, -5}, {1, -1, -5}, {0, 1, -5});
   EXPECT_TRUE(std::isfinite(in_front.amin) && std::isfinite(in_front.bmax));
   EXPECT_LT(in_front.amax - in_front.amin, 0.5f);
   // One vertex behind the origin: its projection flips, the box would be wrong.
-  const GrCullBox straddling = boxOf({-1, -1, -5}, {1, -1, -5}, {0, 1, 3});
+  const CullBox straddling = boxOf({-1, -1, -5}, {1, -1, -5}, {0, 1, 3});
   EXPECT_EQ(straddling.amin, -INFINITY);
   EXPECT_EQ(straddling.bmax, INFINITY);
   // Edge-on: the plane holds the origin, the test's conditioning is unbounded.
-  const GrCullBox edge_on = boxOf({-1, 0, -5}, {1, 0, -5}, {0, 0, -7});
+  const CullBox edge_on = boxOf({-1, 0, -5}, {1, 0, -5}, {0, 0, -7});
   EXPECT_EQ(edge_on.amin, -INFINITY);
   EXPECT_EQ(edge_on.amax, INFINITY);
 }

@@ -82,18 +82,13 @@ typedef struct {
 
 /* Packet culling for rays with a common origin (host/packet_culling.h): a direction d is
  * put on the tangent plane of the frame as a = d.r / d.f, b = d.u / d.f; a packet's box
- * over its lanes' (a, b) that misses a triangle's conservative box skips the triangle. */
+ * over its lanes' (a, b) that misses a triangle's conservative box (read from four planes,
+ * CullPlaneCache) skips the triangle. */
 typedef struct {
   float fx, fy, fz, enabled; /* forward: every culled ray has d.f > 0; enabled 0: no culling */
   float rx, ry, rz, pad0;
   float ux, uy, uz, pad1;
 } GrCullFrame; /* 48 bytes */
-
-/* A triangle's box on the tangent plane, grown by its rounding margin; +-infinity where
- * the triangle cannot be culled (a vertex not in front, or ill-conditioned). */
-typedef struct {
-  float amin, amax, bmin, bmax;
-} GrCullBox; /* 16 bytes */
 
 /* The planes of a bundle buffer, each `stride` floats long. */
 #define GR_PLANE_OX 0
@@ -116,7 +111,6 @@ static_assert(sizeof(GrPeTask) == 16, "GrPeTask layout");
 static_assert(sizeof(GrBundleTask) == 16, "GrBundleTask layout");
 static_assert(sizeof(GrPacketMasks) == 16, "GrPacketMasks layout");
 static_assert(sizeof(GrCullFrame) == 48, "GrCullFrame layout");
-static_assert(sizeof(GrCullBox) == 16, "GrCullBox layout");
 #endif
 
 #endif

@@ -3,9 +3,10 @@
  * and INSIDE the voxel (t_enter <= t <= t_exit). On equal t the earlier triangle (lower
  * global index: a PE's triangles are in global order) stays. With any_hit the loop stops
  * once every active lane has a hit. best_prim is -1 where a lane found none.
- * With cull, triangle i is skipped when its box (cull_planes) misses packet_box (amin, amax, bmin,
- * bmax of the active lanes on the tangent plane; host/packet_culling.h): the boxes are
- * grown by the test's rounding, so no triangle a lane could hit is skipped. */
+ * With cull, triangle i is skipped when its box (cull_planes, CullPlaneCache) misses
+ * packet_box (amin, amax, bmin, bmax of the active lanes on the tangent plane;
+ * host/packet_culling.h): the boxes are grown by the test's rounding, so no triangle a
+ * lane could hit is skipped. */
 #ifndef GRIDRT_PE_CLOSEST16_H
 #define GRIDRT_PE_CLOSEST16_H
 #include "gridrt_types.h"
