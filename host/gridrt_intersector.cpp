@@ -206,8 +206,10 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     return r.ox == common.ox && r.oy == common.oy && r.oz == common.oz &&
            r.tmin == common.tmin && r.tmax == common.tmax;
   };
-  // Rays off the culling frame's forward count as uncovered (padding does not count).
-  const GrCullFrame frame = cull_frame ? *cull_frame : GrCullFrame{};
+  // Rays off the culling frame's forward count as uncovered (padding does not count);
+  // without a frame (light bundles) nothing is checked.
+  const bool check_cover = cull_frame != nullptr;
+  const GrCullFrame frame = check_cover ? *cull_frame : GrCullFrame{};
   int differing = 0, uncovered = 0;
 #pragma omp parallel for schedule(static) reduction(+ : differing, uncovered)
   for (long long b = 0; b < (long long)stride; ++b) {
@@ -217,7 +219,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     planes[GR_PLANE_DY * stride + b] = r >= 0 ? ray.dy : 0.0f;
     planes[GR_PLANE_DZ * stride + b] = r >= 0 ? ray.dz : 0.0f;
     differing += !sameStart(ray);
-    uncovered += r >= 0 && !cullFrameCovers(frame, ray);
+    uncovered += check_cover && r >= 0 && !cullFrameCovers(frame, ray);
   }
   const bool common_origin = differing == 0;
   if (!common_origin) {
@@ -261,7 +263,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     k.setArg(arg++, first_hit_key_.get());
     k.setArg(arg++, mode == HitMode::AnyHit ? 1 : 0);
     k.setArg(arg++, interrupt_ ? 1 : 0);
-    k.setArg(arg++, prepareCulling(cull_frame && uncovered == 0 && common_origin, frame, common));
+    k.setArg(arg++, prepareCulling(check_cover && uncovered == 0 && common_origin, frame, common));
     k.setArg(arg++, cull_planes_.reserve(rt_, 1));
     k.setArg(arg++, int(cull_cache_.stride()));
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange,
