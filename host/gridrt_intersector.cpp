@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "prepared_triangles.h"
+#include "segment_culling.h"
 #include "stopwatch.h"
 
 namespace gridrt {
@@ -19,13 +20,18 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
                                      const KernelOptions& kernel_options)
     : rt_(runtime), grid_(grid), interrupt_(interrupt) {
   const std::string defines =
-      "-DGR_PE_LOCAL_SIZE=" + std::to_string(kPeLocalSize) + " " + kernel_options.defines();
+      "-DGR_PE_LOCAL_SIZE=" + std::to_string(kPeLocalSize) + " " + segmentCullDefines() + " " +
+      kernel_options.defines();
   kernel_ = cl::Kernel(rt_.program("gridrt_pe.cl", defines), "gridrt_pe");
   bundle_kernel_ = cl::Kernel(rt_.program("gridrt_bundle.cl", defines), "gridrt_bundle");
   checkTriangleLayout(grid.pe_triangles, kernel_options);
   pe_tri_begin_.uploadNow(rt_, grid.pe_tri_begin);
   voxel_of_pe_.uploadNow(rt_, grid.voxel_of_pe);
   pe_triangles_.uploadNow(rt_, grid.pe_triangles);
+  std::vector<float> seg_planes;
+  computeSegmentCullPlanes(grid.pe_triangles, seg_planes);
+  seg_planes_.uploadNow(rt_, seg_planes);
+  seg_stride_ = int(seg_planes.size() / GR_SEG_PLANES);
   rays_per_pe_.assign(grid.peCount(), 0);
   tests_per_pe_.assign(grid.peCount(), 0);
 }
@@ -54,6 +60,9 @@ void GridRtIntersector::runPes(const std::vector<GrRay>& rays,
   kernel_.setArg(6, first_hit_key_.get());
   kernel_.setArg(7, mode == HitMode::AnyHit ? 1 : 0);
   kernel_.setArg(8, interrupt_ ? 1 : 0);
+  kernel_.setArg(9, segment_culling_ ? 1 : 0);
+  kernel_.setArg(10, seg_planes_.get());
+  kernel_.setArg(11, seg_stride_);
   rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
                                    cl::NDRange(tasks.size() * kPeLocalSize),
                                    cl::NDRange(kPeLocalSize));
@@ -266,6 +275,9 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     k.setArg(arg++, prepareCulling(check_cover && uncovered == 0 && common_origin, frame, common));
     k.setArg(arg++, cull_planes_.reserve(rt_, 1));
     k.setArg(arg++, int(cull_cache_.stride()));
+    k.setArg(arg++, segment_culling_ ? 1 : 0);
+    k.setArg(arg++, seg_planes_.get());
+    k.setArg(arg++, seg_stride_);
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange,
                                      cl::NDRange(bundles.tasks.size() * kPeLocalSize),
                                      cl::NDRange(kPeLocalSize));

@@ -31,20 +31,6 @@ inline void gr_slab16(float16 o, float16 d, float16 inv, float lo, float hi, flo
   *t1 = select(fmin(*t1, fmax(a, b)), *t1, zero);
 }
 
-/* The smallest and largest of 16 lanes, folded by halves. */
-inline float gr_lane_min16(float16 x) {
-  float8 m8 = fmin(x.lo, x.hi);
-  float4 m4 = fmin(m8.lo, m8.hi);
-  float2 m2 = fmin(m4.lo, m4.hi);
-  return fmin(m2.x, m2.y);
-}
-inline float gr_lane_max16(float16 x) {
-  float8 m8 = fmax(x.lo, x.hi);
-  float4 m4 = fmax(m8.lo, m8.hi);
-  float2 m2 = fmax(m4.lo, m4.hi);
-  return fmax(m2.x, m2.y);
-}
-
 /* One packet: 16 consecutive rays of a task against the PE's voxel and triangles, writing
  * its masks and, where a lane hits, its closest in-voxel hit. Always inlined, so that for
  * camera rays (origin and interval splats of one ray) the compiler folds every operation
@@ -55,7 +41,8 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
     float lox, float hix, float loy, float hiy, float loz, float hiz,
     __global const GrTriangle* pe_tris, int begin, int end, __global float* results,
     int lanes, __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
-    __global const float* cull_planes, int cull_stride) {
+    __global const float* cull_planes, int cull_stride, int seg_cull,
+    __global const float* seg_planes, int seg_stride) {
   /* One result buffer (one map on the host): t, prim, u, v planes of `lanes` each, then
    * one GrPacketMasks per packet. */
   __global float* out_t = results;
@@ -97,11 +84,14 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
                             gr_lane_min16(select((float16)INFINITY, b, active)),
                             gr_lane_max16(select((float16)-INFINITY, b, active)));
     }
+    GrSegmentPacket seg;
+    seg.enabled = 0;
+    if (seg_cull) seg = gr_segment_packet16(r, fmax(t_enter, tmin), fmin(t_exit, tmax), active);
     float16 best_t, best_u, best_v;
     int16 best_prim;
     gr_pe_closest16(r, pe_tris, begin, end, tmin, tmax, t_enter, t_exit, active, any_hit,
                     &best_t, &best_u, &best_v, &best_prim, cull_planes, cull_stride,
-                    packet_box, cull.enabled != 0.0f);
+                    packet_box, cull.enabled != 0.0f, &seg, seg_planes, seg_stride);
     m.hit = gr_lane_bits16(best_prim >= 0);
     if (m.hit) {
       vstore16(best_t, 0, out_t + out);
@@ -128,7 +118,8 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
                    __global const int* pe_tri_begin, __global const GrTriangle* pe_tris,
                    __global float* results, int lanes,
                    __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
-                   __global const float* cull_planes, int cull_stride) {
+                   __global const float* cull_planes, int cull_stride, int seg_cull,
+                   __global const float* seg_planes, int seg_stride) {
   const GrBundleTask task = tasks[get_group_id(0)];
   const int voxel = voxel_of_pe[task.pe];
   const int vx = voxel % grid.nx, vy = (voxel / grid.nx) % grid.ny, vz = voxel / (grid.nx * grid.ny);
@@ -138,7 +129,8 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
   const int begin = pe_tri_begin[task.pe], end = pe_tri_begin[task.pe + 1];
   const int packets = (task.ray_count + LANES - 1) / LANES;
   const int16 lane = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  /* Culling needs a common origin; rays with their own origins never cull. */
+  /* Packet culling needs a common origin; rays with their own origins may use segment
+   * culling instead. */
   GrCullFrame no_cull = cull;
   no_cull.enabled = 0.0f;
 
@@ -159,7 +151,8 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
       r.oz = common.oz;
       gr_bundle_packet(&r, (float16)common.tmin, (float16)common.tmax, in_task, first, out,
                        lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results, lanes,
-                       first_hit_key, any_hit, interrupt, cull, cull_planes, cull_stride);
+                       first_hit_key, any_hit, interrupt, cull, cull_planes, cull_stride, 0,
+                       seg_planes, seg_stride);
     } else {
       r.ox = vload16(0, planes + GR_PLANE_OX * stride + first);
       r.oy = vload16(0, planes + GR_PLANE_OY * stride + first);
@@ -168,7 +161,7 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
                        vload16(0, planes + GR_PLANE_TMAX * stride + first), in_task, first,
                        out, lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results,
                        lanes, first_hit_key, any_hit, interrupt, no_cull, cull_planes,
-                       cull_stride);
+                       cull_stride, seg_cull, seg_planes, seg_stride);
     }
   }
 }

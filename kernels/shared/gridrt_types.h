@@ -101,6 +101,27 @@ typedef struct {
 #define GR_PLANE_TMAX 7
 #define GR_PLANES 8
 
+/* Segment culling for rays with their own origins (host/segment_culling.h): per PE
+ * triangle (pe_triangles order) the planes below, each `stride` floats long: the three
+ * vertices as the ray/triangle test sees them, n = e1 x e2, |e1| |e2| (the test's scale;
+ * +infinity for a degenerate triangle, never culled) and |v0|_1 + |e1| + |e2| (its reach
+ * from the world origin, for the rounding margin). */
+#define GR_SEG_V0X 0
+#define GR_SEG_V0Y 1
+#define GR_SEG_V0Z 2
+#define GR_SEG_V1X 3
+#define GR_SEG_V1Y 4
+#define GR_SEG_V1Z 5
+#define GR_SEG_V2X 6
+#define GR_SEG_V2Y 7
+#define GR_SEG_V2Z 8
+#define GR_SEG_NX 9
+#define GR_SEG_NY 10
+#define GR_SEG_NZ 11
+#define GR_SEG_SCALE 12
+#define GR_SEG_REACH 13
+#define GR_SEG_PLANES 14
+
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(GrRay) == 32, "GrRay layout");
 static_assert(sizeof(GrTriangle) == 48, "GrTriangle layout");

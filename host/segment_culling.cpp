@@ -1,0 +1,66 @@
+#include "segment_culling.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include <glm/glm.hpp>
+
+namespace gridrt {
+
+namespace {
+
+// The smallest float >= x.
+float floatAbove(double x) {
+  const float f = float(x);
+  return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+}  // namespace
+
+void computeSegmentCullPlanes(const std::vector<GrTriangle>& triangles,
+                              std::vector<float>& planes) {
+  const size_t n = triangles.size(), stride = n + kSegmentCullPlanePadding;
+  planes.assign(GR_SEG_PLANES * stride, 0.0f);
+  for (size_t i = 0; i < n; ++i) {
+    const GrTriangle& t = triangles[i];
+    const glm::dvec3 v0(t.v0x, t.v0y, t.v0z), a(t.e1x, t.e1y, t.e1z), b(t.e2x, t.e2y, t.e2z);
+    // The test's edges: stored as they are (MT) or as differences of the vertices
+    // (watertight, which works on the vertices relative to the origin).
+    const bool vertices = t.vertex_layout != 0;
+    const glm::dvec3 e1 = vertices ? a - v0 : a, e2 = vertices ? b - v0 : b;
+    const glm::dvec3 v1 = v0 + e1, v2 = v0 + e2, normal = glm::cross(e1, e2);
+    const double scale = glm::length(e1) * glm::length(e2);
+    const double reach = std::abs(v0.x) + std::abs(v0.y) + std::abs(v0.z) + glm::length(e1) +
+                         glm::length(e2);
+    const double values[GR_SEG_PLANES] = {
+        v0.x, v0.y, v0.z, v1.x, v1.y, v1.z, v2.x, v2.y, v2.z, normal.x, normal.y, normal.z,
+        glm::length(normal) > 0.0 ? double(floatAbove(scale)) : INFINITY,
+        double(floatAbove(reach))};
+    for (int p = 0; p < GR_SEG_PLANES; ++p) planes[p * stride + i] = float(values[p]);
+  }
+}
+
+double segmentCullMargin(const std::vector<float>& planes, size_t index, const GrRay& ray,
+                         float t_hi, double error_factor) {
+  const size_t stride = planes.size() / GR_SEG_PLANES;
+  auto plane = [&](int p) { return double(planes[p * stride + index]); };
+  const double facing = std::abs(plane(GR_SEG_NX) * ray.dx + plane(GR_SEG_NY) * ray.dy +
+                                 plane(GR_SEG_NZ) * ray.dz);
+  const double scale = plane(GR_SEG_SCALE);
+  if (!(facing * kSegmentCullMaxConditioning >= scale)) return INFINITY;
+  const double reach = std::abs(ray.ox) + std::abs(ray.oy) + std::abs(ray.oz) + std::abs(t_hi);
+  return error_factor * 0x1p-24 * scale / facing * (reach + plane(GR_SEG_REACH));
+}
+
+std::string segmentCullDefines() {
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "-DGR_SEG_ERROR=%.9ef -DGR_SEG_MAX_CONDITIONING=%.1ff -DGR_SEG_MIN_TRIANGLES=%d",
+                kSegmentCullErrorFactor * 0x1p-24, kSegmentCullMaxConditioning,
+                kSegmentCullMinTriangles);
+  return text;
+}
+
+}  // namespace gridrt
