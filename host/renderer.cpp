@@ -318,18 +318,20 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   // parallel loop free of shared appends; compacted afterwards in ray order.
   ray_radiance_.resize(n);
   std::vector<glm::vec3>& local = ray_radiance_;
-  const int threads = omp_get_max_threads();
-  spawned_.resize(threads);
+  // Chunks handed out dynamically: the rays' cost varies across the image (background,
+  // walls, mirror and glass), so a static split leaves one core waiting.
+  const size_t chunks = (n + kShadeChunkRays - 1) / kShadeChunkRays;
+  if (spawned_.size() < chunks) spawned_.resize(chunks);
 
-#pragma omp parallel num_threads(threads)
-  {
-  Spawned& out = spawned_[omp_get_thread_num()];
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long long chunk = 0; chunk < (long long)chunks; ++chunk) {
+  Spawned& out = spawned_[chunk];
   out.shadow_rays.clear();
   out.shadows.clear();
   out.rays.clear();
   out.paths.clear();
-#pragma omp for schedule(static)
-  for (long long i = 0; i < (long long)n; ++i) {
+  const size_t chunk_end = std::min(n, size_t(chunk + 1) * kShadeChunkRays);
+  for (size_t i = size_t(chunk) * kShadeChunkRays; i < chunk_end; ++i) {
     const GrRay& ray = rays[i];
     const PathRay path = paths ? (*paths)[i]
                                : PathRay{window_pixels_[i / primary.spp], glm::vec3(primary.weight),
@@ -423,7 +425,8 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   // Shadow rays: any hit before the light means the light is occluded.
   shadow_rays_.clear();
   shadows_.clear();
-  for (const Spawned& out : spawned_) {
+  for (size_t chunk = 0; chunk < chunks; ++chunk) {
+    const Spawned& out = spawned_[chunk];
     shadow_rays_.insert(shadow_rays_.end(), out.shadow_rays.begin(), out.shadow_rays.end());
     shadows_.insert(shadows_.end(), out.shadows.begin(), out.shadows.end());
   }
@@ -438,7 +441,8 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   // (`rays` may be rays_ itself: read no more from here on).
   rays_.clear();
   paths_.clear();
-  for (const Spawned& out : spawned_) {
+  for (size_t chunk = 0; chunk < chunks; ++chunk) {
+    const Spawned& out = spawned_[chunk];
     rays_.insert(rays_.end(), out.rays.begin(), out.rays.end());
     paths_.insert(paths_.end(), out.paths.begin(), out.paths.end());
   }

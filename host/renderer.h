@@ -67,6 +67,8 @@ struct Frame {
 
 // Rays at or beyond this count are traced in several batches, bounding device memory.
 constexpr size_t kMaxBatchRays = size_t(1) << 21;
+// Rays per chunk of the shading loop (a unit of dynamic scheduling).
+constexpr size_t kShadeChunkRays = 2048;
 
 class Renderer {
  public:
@@ -128,8 +130,8 @@ class Renderer {
   std::vector<Light> lights_;                 // the scene's, or the default light
 
   // Reused between frames: the current generation, its hits, spawned rays.
-  // Rays one thread spawns while shading; concatenated in thread order afterwards (static
-  // scheduling gives each thread a contiguous range, so the order is deterministic).
+  // Rays one chunk of a generation spawns while shading; concatenated in chunk order
+  // afterwards, so the order is the rays' whatever thread shaded which chunk.
   struct Spawned {
     std::vector<GrRay> shadow_rays;
     std::vector<ShadowRay> shadows;
