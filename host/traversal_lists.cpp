@@ -1,7 +1,6 @@
 #include "traversal_lists.h"
 
-#include <omp.h>
-
+#include <algorithm>
 #include <cstring>
 
 #include "grid_dda.h"
@@ -10,19 +9,19 @@ namespace gridrt {
 
 void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t count,
                            TraversalLists& lists) {
-  int threads = omp_get_max_threads();
-  lists.scratch.resize(threads);
+  // Chunks handed out dynamically (list lengths vary a lot across a batch), each with its
+  // own output, copied out in chunk order.
+  const size_t chunks = (count + kListChunkRays - 1) / kListChunkRays;
+  if (lists.scratch.size() < chunks) lists.scratch.resize(chunks);
   lists.begin.resize(count + 1);
   lists.begin[0] = 0;
-  std::vector<size_t> chunk_first(threads + 1);
-  for (int t = 0; t <= threads; ++t) chunk_first[t] = count * t / threads;
-#pragma omp parallel num_threads(threads)
-  {
-    int t = omp_get_thread_num();
-    auto& out = lists.scratch[t];
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long long chunk = 0; chunk < (long long)chunks; ++chunk) {
+    auto& out = lists.scratch[chunk];
     out.clear();
     const GrGridInfo& g = grid.info;
-    for (size_t r = chunk_first[t]; r < chunk_first[t + 1]; ++r) {
+    const size_t last = std::min(count, size_t(chunk + 1) * kListChunkRays);
+    for (size_t r = size_t(chunk) * kListChunkRays; r < last; ++r) {
       const GrRay& ray = rays[r];
       size_t before = out.size();
       GrDda s;
@@ -38,12 +37,11 @@ void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t co
   }
   for (size_t r = 0; r < count; ++r) lists.begin[r + 1] += lists.begin[r];
   lists.entries.resize(lists.begin[count]);
-#pragma omp parallel num_threads(threads)
-  {
-    int t = omp_get_thread_num();
-    const auto& out = lists.scratch[t];
+#pragma omp parallel for schedule(static)
+  for (long long chunk = 0; chunk < (long long)chunks; ++chunk) {
+    const auto& out = lists.scratch[chunk];
     if (!out.empty())
-      std::memcpy(&lists.entries[lists.begin[chunk_first[t]]], out.data(),
+      std::memcpy(&lists.entries[lists.begin[size_t(chunk) * kListChunkRays]], out.data(),
                   out.size() * sizeof(ListEntry));
   }
 }

@@ -23,9 +23,12 @@ struct TraversalLists {
   size_t rayCount() const { return begin.empty() ? 0 : begin.size() - 1; }
   int lengthOf(size_t ray) const { return begin[ray + 1] - begin[ray]; }
 
-  // Per-thread scratch, kept between batches so nothing is allocated per frame.
+  // Per-chunk scratch, kept between batches so nothing is allocated per frame.
   std::vector<std::vector<ListEntry>> scratch;
 };
+
+// Rays per chunk of the list computation (a unit of dynamic scheduling).
+constexpr size_t kListChunkRays = 2048;
 
 // Fills `lists` for rays[0..count). Runs on all cores.
 void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t count,
