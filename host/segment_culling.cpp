@@ -7,6 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include "prepared_triangles.h"
+
 namespace gridrt {
 
 namespace {
@@ -24,13 +26,10 @@ void computeSegmentCullPlanes(const std::vector<GrTriangle>& triangles,
   const size_t n = triangles.size(), stride = n + kSegmentCullPlanePadding;
   planes.assign(GR_SEG_PLANES * stride, 0.0f);
   for (size_t i = 0; i < n; ++i) {
-    const GrTriangle& t = triangles[i];
-    const glm::dvec3 v0(t.v0x, t.v0y, t.v0z), a(t.e1x, t.e1y, t.e1z), b(t.e2x, t.e2y, t.e2z);
-    // The test's edges: stored as they are (MT) or as differences of the vertices
-    // (watertight, which works on the vertices relative to the origin).
-    const bool vertices = t.vertex_layout != 0;
-    const glm::dvec3 e1 = vertices ? a - v0 : a, e2 = vertices ? b - v0 : b;
-    const glm::dvec3 v1 = v0 + e1, v2 = v0 + e2, normal = glm::cross(e1, e2);
+    glm::dvec3 v[3];
+    triangleVertices(triangles[i], v);
+    const glm::dvec3 &v0 = v[0], &v1 = v[1], &v2 = v[2];
+    const glm::dvec3 e1 = v1 - v0, e2 = v2 - v0, normal = glm::cross(e1, e2);
     const double scale = glm::length(e1) * glm::length(e2);
     const double reach = std::abs(v0.x) + std::abs(v0.y) + std::abs(v0.z) + glm::length(e1) +
                          glm::length(e2);

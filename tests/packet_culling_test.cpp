@@ -7,9 +7,8 @@
 #include <cmath>
 #include <random>
 
-#include "moller_trumbore.h"
 #include "packet_culling.h"
-#include "watertight.h"
+#include "test_support.h"
 
 namespace gridrt {
 namespace {
@@ -52,16 +51,7 @@ Violations countViolations(bool watertight, double error_factor) {
       const glm::vec3 n = glm::normalize(glm::cross(v[1] - v[0], origin - v[0]));
       v[2] -= n * (glm::dot(v[2] - v[0], n) * 0.999f);
     }
-    GrTriangle tri{};
-    tri.v0x = v[0].x, tri.v0y = v[0].y, tri.v0z = v[0].z;
-    if (watertight) {
-      tri.e1x = v[1].x, tri.e1y = v[1].y, tri.e1z = v[1].z;
-      tri.e2x = v[2].x, tri.e2y = v[2].y, tri.e2z = v[2].z;
-      tri.vertex_layout = 1;
-    } else {
-      tri.e1x = v[1].x - v[0].x, tri.e1y = v[1].y - v[0].y, tri.e1z = v[1].z - v[0].z;
-      tri.e2x = v[2].x - v[0].x, tri.e2y = v[2].y - v[0].y, tri.e2z = v[2].z - v[0].z;
-    }
+    const GrTriangle tri = test::preparedTriangle(v, watertight);
     const GrCullFrame frame = frameTowards(origin, centre);
     std::vector<CullBox> boxes;
     computeCullBoxes(frame, origin, {tri}, boxes, error_factor);
@@ -71,14 +61,7 @@ Violations countViolations(bool watertight, double error_factor) {
           v[ray % 3] + glm::vec3(unit(rng), unit(rng), unit(rng)) * scale;
       const glm::vec3 d = glm::normalize(target - origin);
       float t, u, w;
-      const int hit =
-          watertight
-              ? gr_intersect_watertight_vertices(origin.x, origin.y, origin.z, d.x, d.y, d.z,
-                                                 tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y,
-                                                 tri.e1z, tri.e2x, tri.e2y, tri.e2z, &t, &u, &w)
-              : gr_intersect_mt(origin.x, origin.y, origin.z, d.x, d.y, d.z, tri.v0x, tri.v0y,
-                                tri.v0z, tri.e1x, tri.e1y, tri.e1z, tri.e2x, tri.e2y, tri.e2z,
-                                &t, &u, &w);
+      const int hit = test::intersectScalar(tri, origin, d, &t, &u, &w);
       if (!hit || !(t > 0.0f)) continue;
       ++result.hits;
       float a, b;

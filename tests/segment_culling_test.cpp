@@ -13,13 +13,11 @@
 #include "cl_runtime.h"
 #include "default_scene.h"
 #include "gridrt_intersector.h"
-#include "moller_trumbore.h"
 #include "prepared_triangles.h"
 #include "renderer.h"
 #include "segment_culling.h"
 #include "test_support.h"
 #include "uniform_grid.h"
-#include "watertight.h"
 
 namespace gridrt {
 namespace {
@@ -69,24 +67,11 @@ Violations countViolations(bool watertight, double error_factor) {
       const glm::vec3 n = glm::normalize(glm::cross(v[1] - v[0], v[2] - v[0]));
       origin -= n * (glm::dot(origin - v[0], n) * 0.99f);
     }
-    GrTriangle tri{};
-    tri.v0x = v[0].x, tri.v0y = v[0].y, tri.v0z = v[0].z;
-    if (watertight) {
-      tri.e1x = v[1].x, tri.e1y = v[1].y, tri.e1z = v[1].z;
-      tri.e2x = v[2].x, tri.e2y = v[2].y, tri.e2z = v[2].z;
-      tri.vertex_layout = 1;
-    } else {
-      tri.e1x = v[1].x - v[0].x, tri.e1y = v[1].y - v[0].y, tri.e1z = v[1].z - v[0].z;
-      tri.e2x = v[2].x - v[0].x, tri.e2y = v[2].y - v[0].y, tri.e2z = v[2].z - v[0].z;
-    }
+    const GrTriangle tri = test::preparedTriangle(v, watertight);
     std::vector<float> planes;
     computeSegmentCullPlanes({tri}, planes);
-    const size_t stride = planes.size() / GR_SEG_PLANES;
-    // The triangle as the test sees it (MT: v0 + e1 and v0 + e2 in exact arithmetic).
-    const glm::dvec3 a(planes[GR_SEG_V0X * stride], planes[GR_SEG_V0Y * stride],
-                       planes[GR_SEG_V0Z * stride]);
-    const glm::dvec3 b = watertight ? glm::dvec3(v[1]) : a + glm::dvec3(tri.e1x, tri.e1y, tri.e1z);
-    const glm::dvec3 c = watertight ? glm::dvec3(v[2]) : a + glm::dvec3(tri.e2x, tri.e2y, tri.e2z);
+    glm::dvec3 seen[3];  // the triangle as the test sees it
+    triangleVertices(tri, seen);
     for (int ray = 0; ray < 2000; ++ray) {
       const float scale = std::ldexp(1.0f, -10 - int(rng() % 14));
       const float along = (ray / 3) % 2 ? 0.0f : std::abs(unit(rng));  // vertex or edge
@@ -94,21 +79,14 @@ Violations countViolations(bool watertight, double error_factor) {
       const glm::vec3 miss = glm::vec3(unit(rng), unit(rng), unit(rng)) * scale;
       const glm::vec3 d = glm::normalize(aim + miss - origin);
       float t, u, w;
-      const int hit =
-          watertight
-              ? gr_intersect_watertight_vertices(origin.x, origin.y, origin.z, d.x, d.y, d.z,
-                                                 tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y,
-                                                 tri.e1z, tri.e2x, tri.e2y, tri.e2z, &t, &u, &w)
-              : gr_intersect_mt(origin.x, origin.y, origin.z, d.x, d.y, d.z, tri.v0x, tri.v0y,
-                                tri.v0z, tri.e1x, tri.e1y, tri.e1z, tri.e2x, tri.e2y, tri.e2z,
-                                &t, &u, &w);
+      const int hit = test::intersectScalar(tri, origin, d, &t, &u, &w);
       if (!hit || !(t > 0.0f)) continue;
       const GrRay r{origin.x, origin.y, origin.z, 0.0f, d.x, d.y, d.z, INFINITY};
       const double margin = segmentCullMargin(planes, 0, r, t, error_factor);
       if (std::isinf(margin)) continue;
       ++result.hits;
       const glm::dvec3 point = glm::dvec3(origin) + double(t) * glm::dvec3(d);
-      result.outside += distanceToTriangle(point, a, b, c) > margin;
+      result.outside += distanceToTriangle(point, seen[0], seen[1], seen[2]) > margin;
     }
   }
   return result;
@@ -128,12 +106,9 @@ TEST(SegmentCulling, MarginCoversTheTestsRounding) {
 
 TEST(SegmentCulling, GrazingRaysAndSliversAreNeverCulled) {
   auto planesOf = [](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
-    GrTriangle tri{};
-    tri.v0x = a.x, tri.v0y = a.y, tri.v0z = a.z;
-    tri.e1x = b.x - a.x, tri.e1y = b.y - a.y, tri.e1z = b.z - a.z;
-    tri.e2x = c.x - a.x, tri.e2y = c.y - a.y, tri.e2z = c.z - a.z;
+    const glm::vec3 v[3] = {a, b, c};
     std::vector<float> planes;
-    computeSegmentCullPlanes({tri}, planes);
+    computeSegmentCullPlanes({test::preparedTriangle(v, false)}, planes);
     return planes;
   };
   const auto square = planesOf({0, 0, 0}, {1, 0, 0}, {0, 1, 0});

@@ -8,6 +8,9 @@
 #include <cstring>
 #include <filesystem>
 
+#include "moller_trumbore.h"
+#include "watertight.h"
+
 namespace gridrt::test {
 
 std::string sourcePath(const std::string& relative) {
@@ -66,6 +69,30 @@ size_t hitMismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& g
                     << want[i].t << ", got prim " << got[i].prim << " t " << got[i].t;
   }
   return bad;
+}
+
+GrTriangle preparedTriangle(const glm::vec3 v[3], bool watertight) {
+  GrTriangle tri{};
+  tri.v0x = v[0].x, tri.v0y = v[0].y, tri.v0z = v[0].z;
+  if (watertight) {
+    tri.e1x = v[1].x, tri.e1y = v[1].y, tri.e1z = v[1].z;
+    tri.e2x = v[2].x, tri.e2y = v[2].y, tri.e2z = v[2].z;
+    tri.vertex_layout = 1;
+  } else {
+    tri.e1x = v[1].x - v[0].x, tri.e1y = v[1].y - v[0].y, tri.e1z = v[1].z - v[0].z;
+    tri.e2x = v[2].x - v[0].x, tri.e2y = v[2].y - v[0].y, tri.e2z = v[2].z - v[0].z;
+  }
+  return tri;
+}
+
+int intersectScalar(const GrTriangle& tri, const glm::vec3& o, const glm::vec3& d, float* t,
+                    float* u, float* v) {
+  if (tri.vertex_layout)
+    return gr_intersect_watertight_vertices(o.x, o.y, o.z, d.x, d.y, d.z, tri.v0x, tri.v0y,
+                                            tri.v0z, tri.e1x, tri.e1y, tri.e1z, tri.e2x,
+                                            tri.e2y, tri.e2z, t, u, v);
+  return gr_intersect_mt(o.x, o.y, o.z, d.x, d.y, d.z, tri.v0x, tri.v0y, tri.v0z, tri.e1x,
+                         tri.e1y, tri.e1z, tri.e2x, tri.e2y, tri.e2z, t, u, v);
 }
 
 }  // namespace gridrt::test

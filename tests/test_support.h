@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "gridrt_types.h"
 
 namespace gridrt::test {
@@ -22,5 +24,11 @@ std::vector<std::string> listDir(const std::string& dir);
 // Reports the first difference as a test failure naming `label`.
 size_t hitMismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& got,
                      const std::string& label);
+
+// A triangle in the layout of one ray/triangle test (edges for Moeller-Trumbore, vertices
+// for the watertight test), and the scalar test of that layout on one ray.
+GrTriangle preparedTriangle(const glm::vec3 v[3], bool watertight);
+int intersectScalar(const GrTriangle& tri, const glm::vec3& o, const glm::vec3& d, float* t,
+                    float* u, float* v);
 
 }  // namespace gridrt::test
