@@ -20,19 +20,23 @@ void canonicalVertices(const glm::vec3* in, glm::vec3 out[3]) {
   if (lexLess(out[1], out[0])) std::swap(out[0], out[1]);
 }
 
+GrTriangle prepareTriangle(const glm::vec3 v[3], int prim, const KernelOptions& kernel) {
+  const bool vertices = kernel.watertight;
+  const glm::vec3& a = v[0];
+  glm::vec3 b = v[1], c = v[2];
+  if (!vertices) {
+    b -= a;
+    c -= a;
+  }
+  return GrTriangle{a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z, prim, vertices ? 1 : 0, 0};
+}
+
 std::vector<GrTriangle> prepareTriangles(const Scene& scene, const KernelOptions& kernel) {
   std::vector<GrTriangle> out(scene.triangleCount());
-  const bool vertices = kernel.watertight;
   for (size_t t = 0; t < out.size(); ++t) {
     glm::vec3 v[3];
     canonicalVertices(&scene.positions[3 * t], v);
-    const glm::vec3& a = v[0];
-    glm::vec3 b = v[1], c = v[2];
-    if (!vertices) {
-      b -= a;
-      c -= a;
-    }
-    out[t] = GrTriangle{a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z, int(t), vertices ? 1 : 0, 0};
+    out[t] = prepareTriangle(v, int(t), kernel);
   }
   return out;
 }

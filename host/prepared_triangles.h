@@ -21,6 +21,9 @@ void canonicalVertices(const glm::vec3* in, glm::vec3 out[3]);
 // the watertight test; vertices in canonical order.
 std::vector<GrTriangle> prepareTriangles(const Scene& scene, const KernelOptions& kernel = {});
 
+// One triangle in that layout, its vertices in the order given (not reordered).
+GrTriangle prepareTriangle(const glm::vec3 v[3], int prim, const KernelOptions& kernel = {});
+
 // The three vertices of a prepared triangle, exactly as its intersector sees them (for an
 // edge layout v0 + e1 is summed in double, where it is exact).
 void triangleVertices(const GrTriangle& t, glm::dvec3 v[3]);

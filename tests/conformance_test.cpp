@@ -312,8 +312,8 @@ TEST_F(Conformance, RandomRaysInTheClosedDefaultBoxMatchBrute) {
 // ---- Targeted cases -------------------------------------------------------------------
 
 GrTriangle tri(glm::vec3 a, glm::vec3 b, glm::vec3 c, int prim) {
-  glm::vec3 e1 = b - a, e2 = c - a;
-  return GrTriangle{a.x, a.y, a.z, e1.x, e1.y, e1.z, e2.x, e2.y, e2.z, prim, 0, 0};
+  const glm::vec3 v[3] = {a, b, c};
+  return prepareTriangle(v, prim);
 }
 
 Bounds boundsOf(const std::vector<GrTriangle>& tris) {

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "packet_culling.h"
+#include "prepared_triangles.h"
 #include "test_support.h"
 
 namespace gridrt {
@@ -51,7 +52,7 @@ Violations countViolations(bool watertight, double error_factor) {
       const glm::vec3 n = glm::normalize(glm::cross(v[1] - v[0], origin - v[0]));
       v[2] -= n * (glm::dot(v[2] - v[0], n) * 0.999f);
     }
-    const GrTriangle tri = test::preparedTriangle(v, watertight);
+    const GrTriangle tri = prepareTriangle(v, 0, KernelOptions{watertight});
     const GrCullFrame frame = frameTowards(origin, centre);
     std::vector<CullBox> boxes;
     computeCullBoxes(frame, origin, {tri}, boxes, error_factor);
@@ -87,12 +88,9 @@ TEST(PacketCulling, TrianglesNotInFrontOrEdgeOnAreNeverCulled) {
   const glm::vec3 origin(0.0f);
   const GrCullFrame frame = frameTowards(origin, glm::vec3(0, 0, -1));
   auto boxOf = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
-    GrTriangle tri{};
-    tri.v0x = a.x, tri.v0y = a.y, tri.v0z = a.z;
-    tri.e1x = b.x - a.x, tri.e1y = b.y - a.y, tri.e1z = b.z - a.z;
-    tri.e2x = c.x - a.x, tri.e2y = c.y - a.y, tri.e2z = c.z - a.z;
+    const glm::vec3 v[3] = {a, b, c};
     std::vector<CullBox> boxes;
-    computeCullBoxes(frame, origin, {tri}, boxes);
+    computeCullBoxes(frame, origin, {prepareTriangle(v, 0)}, boxes);
     return boxes[0];
   };
   const CullBox in_front = boxOf({-1, -1, -5}, {1, -1, -5}, {0, 1, -5});

@@ -67,7 +67,7 @@ Violations countViolations(bool watertight, double error_factor) {
       const glm::vec3 n = glm::normalize(glm::cross(v[1] - v[0], v[2] - v[0]));
       origin -= n * (glm::dot(origin - v[0], n) * 0.99f);
     }
-    const GrTriangle tri = test::preparedTriangle(v, watertight);
+    const GrTriangle tri = prepareTriangle(v, 0, KernelOptions{watertight});
     std::vector<float> planes;
     computeSegmentCullPlanes({tri}, planes);
     glm::dvec3 seen[3];  // the triangle as the test sees it
@@ -108,7 +108,7 @@ TEST(SegmentCulling, GrazingRaysAndSliversAreNeverCulled) {
   auto planesOf = [](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
     const glm::vec3 v[3] = {a, b, c};
     std::vector<float> planes;
-    computeSegmentCullPlanes({test::preparedTriangle(v, false)}, planes);
+    computeSegmentCullPlanes({prepareTriangle(v, 0)}, planes);
     return planes;
   };
   const auto square = planesOf({0, 0, 0}, {1, 0, 0}, {0, 1, 0});

@@ -71,20 +71,6 @@ size_t hitMismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& g
   return bad;
 }
 
-GrTriangle preparedTriangle(const glm::vec3 v[3], bool watertight) {
-  GrTriangle tri{};
-  tri.v0x = v[0].x, tri.v0y = v[0].y, tri.v0z = v[0].z;
-  if (watertight) {
-    tri.e1x = v[1].x, tri.e1y = v[1].y, tri.e1z = v[1].z;
-    tri.e2x = v[2].x, tri.e2y = v[2].y, tri.e2z = v[2].z;
-    tri.vertex_layout = 1;
-  } else {
-    tri.e1x = v[1].x - v[0].x, tri.e1y = v[1].y - v[0].y, tri.e1z = v[1].z - v[0].z;
-    tri.e2x = v[2].x - v[0].x, tri.e2y = v[2].y - v[0].y, tri.e2z = v[2].z - v[0].z;
-  }
-  return tri;
-}
-
 int intersectScalar(const GrTriangle& tri, const glm::vec3& o, const glm::vec3& d, float* t,
                     float* u, float* v) {
   if (tri.vertex_layout)

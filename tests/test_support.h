@@ -25,9 +25,7 @@ std::vector<std::string> listDir(const std::string& dir);
 size_t hitMismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& got,
                      const std::string& label);
 
-// A triangle in the layout of one ray/triangle test (edges for Moeller-Trumbore, vertices
-// for the watertight test), and the scalar test of that layout on one ray.
-GrTriangle preparedTriangle(const glm::vec3 v[3], bool watertight);
+// The scalar ray/triangle test of a prepared triangle's layout (prepareTriangle), on one ray.
 int intersectScalar(const GrTriangle& tri, const glm::vec3& o, const glm::vec3& d, float* t,
                     float* u, float* v);
 
