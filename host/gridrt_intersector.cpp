@@ -60,9 +60,8 @@ void GridRtIntersector::runPes(const std::vector<GrRay>& rays,
   kernel_.setArg(6, first_hit_key_.get());
   kernel_.setArg(7, mode == HitMode::AnyHit ? 1 : 0);
   kernel_.setArg(8, interrupt_ ? 1 : 0);
-  kernel_.setArg(9, segment_culling_ ? 1 : 0);
-  kernel_.setArg(10, seg_planes_.get());
-  kernel_.setArg(11, seg_stride_);
+  kernel_.setArg(9, seg_planes_.get());
+  kernel_.setArg(10, seg_stride_);
   rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
                                    cl::NDRange(tasks.size() * kPeLocalSize),
                                    cl::NDRange(kPeLocalSize));
@@ -275,7 +274,6 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     k.setArg(arg++, prepareCulling(check_cover && uncovered == 0 && common_origin, frame, common));
     k.setArg(arg++, cull_planes_.reserve(rt_, 1));
     k.setArg(arg++, int(cull_cache_.stride()));
-    k.setArg(arg++, segment_culling_ ? 1 : 0);
     k.setArg(arg++, seg_planes_.get());
     k.setArg(arg++, seg_stride_);
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange,

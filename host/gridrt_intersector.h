@@ -53,9 +53,6 @@ class GridRtIntersector : public Intersector {
                              HitMode mode, std::vector<GrHit>& hits) override;
   // Tests send every light batch through the bundles, whatever its size and shape.
   void forceLightBundles() { force_light_bundles_ = true; }
-  // Segment culling (segment_culling.h) of rays with their own origins: on by default;
-  // off for comparisons.
-  void setSegmentCulling(bool on) { segment_culling_ = on; }
 
   // Rays and tests each PE received, summed over all batches (load balance).
   const std::vector<uint64_t>& raysPerPe() const { return rays_per_pe_; }
@@ -116,7 +113,6 @@ class GridRtIntersector : public Intersector {
   CullPlaneCache cull_cache_;
   DeviceBuffer<float> cull_planes_{"the culling boxes", CL_MEM_READ_ONLY};
   // Segment culling: the PE triangles' planes (segment_culling.h), uploaded once.
-  bool segment_culling_ = true;
   DeviceBuffer<float> seg_planes_{"the segment culling planes", CL_MEM_READ_ONLY};
   int seg_stride_ = 0;
   DeviceBuffer<int> voxel_of_pe_{"the PE voxels", CL_MEM_READ_ONLY};

@@ -118,7 +118,7 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
                    __global const int* pe_tri_begin, __global const GrTriangle* pe_tris,
                    __global float* results, int lanes,
                    __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
-                   __global const float* cull_planes, int cull_stride, int seg_cull,
+                   __global const float* cull_planes, int cull_stride,
                    __global const float* seg_planes, int seg_stride) {
   const GrBundleTask task = tasks[get_group_id(0)];
   const int voxel = voxel_of_pe[task.pe];
@@ -129,7 +129,7 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
   const int begin = pe_tri_begin[task.pe], end = pe_tri_begin[task.pe + 1];
   const int packets = (task.ray_count + LANES - 1) / LANES;
   const int16 lane = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  /* Packet culling needs a common origin; rays with their own origins may use segment
+  /* Packet culling needs a common origin; rays with their own origins use segment
    * culling instead. */
   GrCullFrame no_cull = cull;
   no_cull.enabled = 0.0f;
@@ -161,7 +161,7 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
                        vload16(0, planes + GR_PLANE_TMAX * stride + first), in_task, first,
                        out, lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results,
                        lanes, first_hit_key, any_hit, interrupt, no_cull, cull_planes,
-                       cull_stride, seg_cull, seg_planes, seg_stride);
+                       cull_stride, 1, seg_planes, seg_stride);
     }
   }
 }

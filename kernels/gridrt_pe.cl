@@ -20,7 +20,7 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1)))
 void gridrt_pe(__global const GrPeTask* tasks, __global const GrPeEntry* entries,
                __global const GrRay* rays, __global const int* pe_tri_begin,
                __global const GrTriangle* pe_tris, __global GrHit* slot_hits,
-               __global int* first_hit_key, int any_hit, int interrupt, int seg_cull,
+               __global int* first_hit_key, int any_hit, int interrupt,
                __global const float* seg_planes, int seg_stride) {
   GrPeTask task = tasks[get_group_id(0)];
   int first = get_local_id(0) * LANES;
@@ -57,9 +57,9 @@ void gridrt_pe(__global const GrPeTask* tasks, __global const GrPeEntry* entries
   float16 t_enter = vload16(0, a_t0);
   float16 t_exit = vload16(0, a_t1);
   int16 active = vload16(0, a_active);
-  GrSegmentPacket seg;
-  seg.enabled = 0;
-  if (seg_cull) seg = gr_segment_packet16(&r16, fmax(t_enter, tmin), fmin(t_exit, tmax), active);
+  /* The list path's rays have their own origins: segment culling. */
+  const GrSegmentPacket seg =
+      gr_segment_packet16(&r16, fmax(t_enter, tmin), fmin(t_exit, tmax), active);
   float16 best_t, best_u, best_v;
   int16 best_prim;
   gr_pe_closest16(&r16, pe_tris, pe_tri_begin[task.pe], pe_tri_begin[task.pe + 1], tmin, tmax,
