@@ -5,6 +5,7 @@
 #include <cstring>
 #include <limits>
 
+#include "outward_rounding.h"
 #include "prepared_triangles.h"
 
 namespace gridrt {
@@ -17,16 +18,6 @@ constexpr CullBox kUnculled{-kInf, kInf, -kInf, kInf};
 glm::dvec3 forwardOf(const GrCullFrame& f) { return {f.fx, f.fy, f.fz}; }
 glm::dvec3 rightOf(const GrCullFrame& f) { return {f.rx, f.ry, f.rz}; }
 glm::dvec3 upOf(const GrCullFrame& f) { return {f.ux, f.uy, f.uz}; }
-
-// Float bounds that contain [lo, hi] (rounded outwards).
-float floatBelow(double x) {
-  float f = float(x);
-  return double(f) > x ? std::nextafter(f, -kInf) : f;
-}
-float floatAbove(double x) {
-  float f = float(x);
-  return double(f) < x ? std::nextafter(f, kInf) : f;
-}
 
 CullBox boxOf(const GrCullFrame& frame, const glm::dvec3& origin, const glm::dvec3 v[3],
                 double error_factor) {

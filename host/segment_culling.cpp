@@ -2,24 +2,14 @@
 
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <string>
 
 #include <glm/glm.hpp>
 
+#include "outward_rounding.h"
 #include "prepared_triangles.h"
 
 namespace gridrt {
-
-namespace {
-
-// The smallest float >= x.
-float floatAbove(double x) {
-  const float f = float(x);
-  return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-}
-
-}  // namespace
 
 void computeSegmentCullPlanes(const std::vector<GrTriangle>& triangles,
                               std::vector<float>& planes) {
