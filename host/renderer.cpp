@@ -1,7 +1,5 @@
 #include "renderer.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
