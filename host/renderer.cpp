@@ -6,6 +6,7 @@
 
 #include "bounds.h"
 #include "camera_rays.h"
+#include "pixel_blocks.h"
 #include "prepared_triangles.h"
 #include "stopwatch.h"
 
@@ -252,7 +253,18 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   // window pixel k is ray k * spp + s), then the rays each one spawns.
   const std::vector<GrRay>* rays = &primary_rays_;
   const std::vector<PathRay>* paths = nullptr;
-  const PrimaryPaths primary{spp, weight};
+  // A full window pass shades its pixels in 4x4 blocks; the adaptive pass (scattered
+  // pixels) in the order of its list.
+  const int* order = nullptr;
+  if (window) {
+    if (block_order_width_ != window->width() || block_order_height_ != window->height()) {
+      pixelBlockOrder(window->width(), window->height(), block_order_);
+      block_order_width_ = window->width();
+      block_order_height_ = window->height();
+    }
+    order = block_order_.data();
+  }
+  const PrimaryPaths primary{spp, weight, order};
   for (int depth = 0; !rays->empty() && depth <= settings_.max_depth; ++depth) {
     bool first = depth == 0;
     if (first) {
@@ -329,7 +341,12 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   out.rays.clear();
   out.paths.clear();
   const size_t chunk_end = std::min(n, size_t(chunk + 1) * kShadeChunkRays);
-  for (size_t i = size_t(chunk) * kShadeChunkRays; i < chunk_end; ++i) {
+  for (size_t j = size_t(chunk) * kShadeChunkRays; j < chunk_end; ++j) {
+    // The primary generation in its shading order: sample j % spp of the pixel at
+    // position j / spp of the order.
+    const size_t i = paths || !primary.order
+                         ? j
+                         : size_t(primary.order[j / primary.spp]) * primary.spp + j % primary.spp;
     const GrRay& ray = rays[i];
     const PathRay path = paths ? (*paths)[i]
                                : PathRay{window_pixels_[i / primary.spp], glm::vec3(primary.weight),

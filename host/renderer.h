@@ -110,9 +110,12 @@ class Renderer {
   // leaves the spawned generation in rays_ / paths_.
   // The paths of primary rays are implicit: ray k * spp + s is sample s of window pixel
   // k, with throughput `weight`.
+  // order (may be null: 0, 1, 2, ...) lists the window pixels in the order they are
+  // shaded, which is the order their spawned rays are traced in (pixel_blocks.h).
   struct PrimaryPaths {
     int spp;
     float weight;
+    const int* order;
   };
   // paths is null for the primary generation.
   // Traces shadow_rays_ into shadow_hits_ (any hit), light by light: rays towards a point
@@ -146,6 +149,8 @@ class Renderer {
   std::vector<ShadowRay> shadows_;
   std::vector<Spawned> spawned_;
   std::vector<int> window_pixels_;  // full-image index of each rendered pixel
+  std::vector<int> block_order_;    // the window's pixels in 4x4 blocks (pixel_blocks.h)
+  int block_order_width_ = 0, block_order_height_ = 0;  // the window block_order_ is for
   std::vector<glm::vec3> radiance_;  // per pixel accumulator
   std::vector<glm::vec3> ray_radiance_;  // per ray of the current generation
 };
