@@ -95,7 +95,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   hits.resize(n);
   Stopwatch clock;
   computeTraversalLists(grid_, rays.data(), n, lists_);
-  binByPe(lists_, grid_.peCount(), kPeTaskRays, bins_);
+  binByPe(lists_, rays.data(), grid_.peCount(), kPeTaskRays, bins_);
   counters_.lists_ms += clock.ms();
 
   clock.restart();

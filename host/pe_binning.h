@@ -1,6 +1,9 @@
-// Binning of the traversal lists by PE: every (ray, PE) pair goes to its PE's bin, in ray
-// order (coherent rays stay together), and each bin is cut into tasks of at most
-// `task_rays` pairs, one OpenCL work-group each.
+// Binning of the traversal lists by PE: every (ray, PE) pair goes to its PE's bin, and
+// within the bin to the part for its direction's octant (the signs of dx, dy, dz), each
+// part in ray order: the kernels take a bin's rays 16 at a time, and rays that point
+// alike make packets that segment culling serves well (a glass surface spawns an inward
+// and an outward ray per hit, side by side in ray order). Each part is cut into tasks of
+// at most `task_rays` pairs, one OpenCL work-group each.
 #pragma once
 #include <vector>
 
@@ -13,9 +16,11 @@ struct PeBins {
   std::vector<GrPeEntry> entries;  // grouped by PE
   std::vector<GrPeTask> tasks;
   std::vector<int> pairs_per_pe;   // rays each PE received in the last batch
+  std::vector<int> pairs_per_part; // ... per (PE, octant): index pe * 8 + octant
   std::vector<std::vector<int>> thread_counts;  // scratch reused between batches
 };
 
-void binByPe(const TraversalLists& lists, int pe_count, int task_rays, PeBins& bins);
+void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int task_rays,
+             PeBins& bins);
 
 }  // namespace gridrt
