@@ -395,8 +395,9 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       if (cos_theta <= 0.0f || glm::dot(ng, to_light) <= 0.0f || glm::length(e) == 0.0f) continue;
       glm::vec3 r = reflectDirection(-to_light, n);
       float rv = std::max(0.0f, glm::dot(r, -d));
-      glm::vec3 direct = terms.diffuse / kPi * e * cos_theta +
-                         terms.specular * e * std::pow(rv, terms.phong_exponent);
+      // pow(0, e) is 0 for the exponent (>= 1): no call for the half turned away.
+      const float highlight = rv > 0.0f ? std::pow(rv, terms.phong_exponent) : 0.0f;
+      glm::vec3 direct = terms.diffuse / kPi * e * cos_theta + terms.specular * e * highlight;
       glm::vec3 contribution = weight * direct;
       if (glm::length(contribution) == 0.0f) continue;
       out.shadow_rays.push_back(makeRay(above, to_light, distance));
@@ -438,13 +439,7 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   frame.times.shade_ms += clock.ms();
 
   // Shadow rays: any hit before the light means the light is occluded.
-  shadow_rays_.clear();
-  shadows_.clear();
-  for (size_t chunk = 0; chunk < chunks; ++chunk) {
-    const Spawned& out = spawned_[chunk];
-    shadow_rays_.insert(shadow_rays_.end(), out.shadow_rays.begin(), out.shadow_rays.end());
-    shadows_.insert(shadows_.end(), out.shadows.begin(), out.shadows.end());
-  }
+  concatenateChunks(chunks, &Spawned::shadow_rays, &Spawned::shadows, shadow_rays_, shadows_);
   frame.rays.shadow += shadow_rays_.size();
   if (!shadow_rays_.empty()) {
     traceShadows(frame.times.intersect_ms);
@@ -454,12 +449,23 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
 
   // The next generation: the spawned reflection and refraction rays, in thread order
   // (`rays` may be rays_ itself: read no more from here on).
-  rays_.clear();
-  paths_.clear();
-  for (size_t chunk = 0; chunk < chunks; ++chunk) {
-    const Spawned& out = spawned_[chunk];
-    rays_.insert(rays_.end(), out.rays.begin(), out.rays.end());
-    paths_.insert(paths_.end(), out.paths.begin(), out.paths.end());
+  concatenateChunks(chunks, &Spawned::rays, &Spawned::paths, rays_, paths_);
+}
+
+template <typename Extra>
+void Renderer::concatenateChunks(size_t chunks, std::vector<GrRay> Spawned::*rays,
+                                 std::vector<Extra> Spawned::*extras, std::vector<GrRay>& all_rays,
+                                 std::vector<Extra>& all_extras) {
+  chunk_offsets_.assign(chunks + 1, 0);
+  for (size_t c = 0; c < chunks; ++c)
+    chunk_offsets_[c + 1] = chunk_offsets_[c] + (spawned_[c].*rays).size();
+  all_rays.resize(chunk_offsets_[chunks]);
+  all_extras.resize(chunk_offsets_[chunks]);
+#pragma omp parallel for schedule(static)
+  for (long long c = 0; c < (long long)chunks; ++c) {
+    const Spawned& out = spawned_[c];
+    std::copy((out.*rays).begin(), (out.*rays).end(), all_rays.begin() + chunk_offsets_[c]);
+    std::copy((out.*extras).begin(), (out.*extras).end(), all_extras.begin() + chunk_offsets_[c]);
   }
 }
 

@@ -124,6 +124,13 @@ class Renderer {
   void shadeGeneration(int depth, const std::vector<GrRay>& rays,
                        const std::vector<PathRay>* paths, PrimaryPaths primary, Frame& frame);
   void fillPrimaryAovs(PrimaryAovs& aovs, const RayDiagnostics& diagnostics, int spp);
+  struct Spawned;
+  // The chunks' rays (and their shadows or paths) one after the other, in chunk order,
+  // copied on all cores.
+  template <typename Extra>
+  void concatenateChunks(size_t chunks, std::vector<GrRay> Spawned::*rays,
+                         std::vector<Extra> Spawned::*extras, std::vector<GrRay>& all_rays,
+                         std::vector<Extra>& all_extras);
 
   const Scene& scene_;
   Camera camera_;
@@ -148,6 +155,7 @@ class Renderer {
   std::vector<PathRay> paths_;
   std::vector<ShadowRay> shadows_;
   std::vector<Spawned> spawned_;
+  std::vector<size_t> chunk_offsets_;  // where each chunk's output starts (concatenateChunks)
   std::vector<int> window_pixels_;  // full-image index of each rendered pixel
   std::vector<int> block_order_;    // the window's pixels in 4x4 blocks (pixel_blocks.h)
   int block_order_width_ = 0, block_order_height_ = 0;  // the window block_order_ is for
