@@ -253,10 +253,11 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   // window pixel k is ray k * spp + s), then the rays each one spawns.
   const std::vector<GrRay>* rays = &primary_rays_;
   const std::vector<PathRay>* paths = nullptr;
-  // A full window pass shades its pixels in 4x4 blocks; the adaptive pass (scattered
-  // pixels) in the order of its list.
+  // A full window pass that spawns rays shades its pixels in 4x4 blocks; the adaptive
+  // pass (scattered pixels) in the order of its list, and primary-only shading in ray
+  // order (it spawns nothing, and reads and writes its arrays in order).
   const int* order = nullptr;
-  if (window) {
+  if (window && !settings_.primary_only) {
     if (block_order_width_ != window->width() || block_order_height_ != window->height()) {
       pixelBlockOrder(window->width(), window->height(), block_order_);
       block_order_width_ = window->width();
