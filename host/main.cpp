@@ -8,11 +8,9 @@
 #include "application.h"
 #include "cl_runtime.h"
 #include "errors.h"
-#include "openmp_spin.h"
 #include "options.h"
 
 int main(int argc, char** argv) {
-  gridrt::restartWithShortOpenMpSpin(argv);
   try {
     auto options = gridrt::parseCommandLine(argc, argv);
     if (!options) return 0;
