@@ -24,20 +24,21 @@ void BruteIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   size_t n = rays.size();
   hits.resize(n);
   if (n > 0) {
-    rays_.upload(rt_, rays);
-    hits_.reserve(rt_, n);
-    kernel_.setArg(0, rays_.get());
-    kernel_.setArg(1, int(n));
-    kernel_.setArg(2, triangles_.get());
-    kernel_.setArg(3, triangle_count_);
-    kernel_.setArg(4, mode == HitMode::AnyHit ? 1 : 0);
-    kernel_.setArg(5, hits_.get());
-    size_t items = (n + kLanes - 1) / kLanes;
-    size_t global = (items + kLocalSize - 1) / kLocalSize * kLocalSize;
-    rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global),
-                                     cl::NDRange(kLocalSize));
-    rt_.finishWithHostThreadsAsleep();
-    hits_.download(rt_, hits.data(), n);
+    rt_.runWithHostThreadsAsleep([&] {
+      rays_.upload(rt_, rays);
+      hits_.reserve(rt_, n);
+      kernel_.setArg(0, rays_.get());
+      kernel_.setArg(1, int(n));
+      kernel_.setArg(2, triangles_.get());
+      kernel_.setArg(3, triangle_count_);
+      kernel_.setArg(4, mode == HitMode::AnyHit ? 1 : 0);
+      kernel_.setArg(5, hits_.get());
+      size_t items = (n + kLanes - 1) / kLanes;
+      size_t global = (items + kLocalSize - 1) / kLocalSize * kLocalSize;
+      rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global),
+                                       cl::NDRange(kLocalSize));
+      hits_.download(rt_, hits.data(), n);
+    });
   }
   counters_.rays += n;
   counters_.tests += uint64_t(n) * triangle_count_;

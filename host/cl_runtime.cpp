@@ -1,6 +1,11 @@
 #include "cl_runtime.h"
 
+#include <omp.h>
+
 #include <algorithm>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
 #include <cctype>
 #include <cstdlib>
 #include <regex>
@@ -201,12 +206,39 @@ cl::Program& ClRuntime::program(const std::string& file, const std::string& defi
   return programs_.emplace(key, program).first->second;
 }
 
-void ClRuntime::finishWithHostThreadsAsleep() {
+void ClRuntime::runWithHostThreadsAsleep(const std::function<void()>& enqueue) {
   cl::Event marker;
-  queue_.enqueueMarkerWithWaitList(nullptr, &marker);
-  queue_.flush();
+  std::mutex mutex;
+  std::condition_variable queued;
+  bool ready = false;
+  std::exception_ptr error;  // no exception may leave a parallel region
+  // The workers sleep on `queued` until the commands are in, then in the marker's wait.
 #pragma omp parallel
-  marker.wait();
+  {
+    if (omp_get_thread_num() == 0) {
+      try {
+        enqueue();
+        queue_.enqueueMarkerWithWaitList(nullptr, &marker);
+        queue_.flush();
+      } catch (...) {
+        error = std::current_exception();
+        try {
+          queue_.finish();  // nothing queued may outlive the data it reads
+        } catch (...) {
+        }
+      }
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        ready = true;
+      }
+      queued.notify_all();
+    } else {
+      std::unique_lock<std::mutex> lock(mutex);
+      queued.wait(lock, [&] { return ready; });
+    }
+    if (!error) marker.wait();
+  }
+  if (error) std::rethrow_exception(error);
 }
 
 void ClRuntime::checkAllocation(size_t bytes, const std::string& what) const {

@@ -4,6 +4,7 @@
 #include <CL/opencl.hpp>
 
 #include <map>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -52,10 +53,15 @@ class ClRuntime {
   // Throws RenderError naming `what` if a buffer of `bytes` exceeds the device's limits.
   void checkAllocation(size_t bytes, const std::string& what) const;
 
-  // Runs everything queued so far and waits for it with every OpenMP thread of the host
-  // asleep in the wait: an idle OpenMP worker otherwise spins (libgomp's default spin
-  // lasts milliseconds) on the cores a CPU device's own threads run the kernel on.
-  void finishWithHostThreadsAsleep();
+  // Calls `enqueue` (OpenCL commands; a blocking one is fine) on this thread and waits for
+  // everything queued, with the host's other OpenMP threads asleep from before the first
+  // command until the last has run. An idle OpenMP worker otherwise spins (libgomp's
+  // default spin lasts milliseconds after every parallel region) on the cores the CPU
+  // device's threads run the commands on, and now and then holds one of them off for a
+  // time slice. Every device interaction of the intersectors goes through here (default
+  // Whitted frame 110.3 -> 95.7 ms, as fast as GOMP_SPINCOUNT=10000; bunny 1280x960
+  // 43.5 -> 39.3 ms). An exception from `enqueue` is rethrown after the wait.
+  void runWithHostThreadsAsleep(const std::function<void()>& enqueue);
 
  private:
   DeviceInfo info_;

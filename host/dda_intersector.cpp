@@ -27,24 +27,25 @@ void DdaIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   hits.resize(n);
   tests_host_.resize(n);
   if (n > 0) {
-    rays_.upload(rt_, rays);
-    hits_.reserve(rt_, n);
-    tests_.reserve(rt_, n);
-    kernel_.setArg(0, rays_.get());
-    kernel_.setArg(1, int(n));
-    kernel_.setArg(2, grid_.info);
-    kernel_.setArg(3, pe_of_voxel_.get());
-    kernel_.setArg(4, pe_tri_begin_.get());
-    kernel_.setArg(5, pe_triangles_.get());
-    kernel_.setArg(6, mode == HitMode::AnyHit ? 1 : 0);
-    kernel_.setArg(7, hits_.get());
-    kernel_.setArg(8, tests_.get());
-    size_t global = (n + kLocalSize - 1) / kLocalSize * kLocalSize;
-    rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global),
-                                     cl::NDRange(kLocalSize));
-    rt_.finishWithHostThreadsAsleep();
-    hits_.download(rt_, hits.data(), n);
-    tests_.download(rt_, tests_host_.data(), n);
+    rt_.runWithHostThreadsAsleep([&] {
+      rays_.upload(rt_, rays);
+      hits_.reserve(rt_, n);
+      tests_.reserve(rt_, n);
+      kernel_.setArg(0, rays_.get());
+      kernel_.setArg(1, int(n));
+      kernel_.setArg(2, grid_.info);
+      kernel_.setArg(3, pe_of_voxel_.get());
+      kernel_.setArg(4, pe_tri_begin_.get());
+      kernel_.setArg(5, pe_triangles_.get());
+      kernel_.setArg(6, mode == HitMode::AnyHit ? 1 : 0);
+      kernel_.setArg(7, hits_.get());
+      kernel_.setArg(8, tests_.get());
+      size_t global = (n + kLocalSize - 1) / kLocalSize * kLocalSize;
+      rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global),
+                                       cl::NDRange(kLocalSize));
+      hits_.download(rt_, hits.data(), n);
+      tests_.download(rt_, tests_host_.data(), n);
+    });
   }
   counters_.rays += n;
   for (int t : tests_host_) counters_.tests += t;

@@ -39,46 +39,58 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
 void GridRtIntersector::runPes(const std::vector<GrRay>& rays,
                                const std::vector<EntrySegment>& entries, size_t entry_count,
                                const std::vector<GrPeTask>& tasks, size_t slots, HitMode mode) {
-  slot_hits_ = nullptr;
-  if (tasks.empty()) return;
   const size_t n = rays.size();
-  rays_.upload(rt_, rays);
-  entries_.reserve(rt_, entry_count);
-  for (const EntrySegment& segment : entries)
-    entries_.uploadAt(rt_, segment.offset, segment.data, segment.count);
-  tasks_.upload(rt_, tasks);
-  slot_hits_dev_.reserve(rt_, slots);
-  first_hit_key_.reserve(rt_, n);
-  if (interrupt_)
-    rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, n * sizeof(int));
-  kernel_.setArg(0, tasks_.get());
-  kernel_.setArg(1, entries_.get());
-  kernel_.setArg(2, rays_.get());
-  kernel_.setArg(3, pe_tri_begin_.get());
-  kernel_.setArg(4, pe_triangles_.get());
-  kernel_.setArg(5, slot_hits_dev_.get());
-  kernel_.setArg(6, first_hit_key_.get());
-  kernel_.setArg(7, mode == HitMode::AnyHit ? 1 : 0);
-  kernel_.setArg(8, interrupt_ ? 1 : 0);
-  kernel_.setArg(9, seg_planes_.get());
-  kernel_.setArg(10, seg_stride_);
-  rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
-                                   cl::NDRange(tasks.size() * kPeLocalSize),
-                                   cl::NDRange(kPeLocalSize));
-  rt_.finishWithHostThreadsAsleep();
-  slot_hits_ = static_cast<const GrHit*>(rt_.queue().enqueueMapBuffer(
-      slot_hits_dev_.get(), CL_TRUE, CL_MAP_READ, 0, slots * sizeof(GrHit)));
+  rt_.runWithHostThreadsAsleep([&] {
+    enqueueUnmaps();
+    if (tasks.empty()) return;
+    rays_.upload(rt_, rays);
+    entries_.reserve(rt_, entry_count);
+    for (const EntrySegment& segment : entries)
+      entries_.uploadAt(rt_, segment.offset, segment.data, segment.count);
+    tasks_.upload(rt_, tasks);
+    slot_hits_dev_.reserve(rt_, slots);
+    first_hit_key_.reserve(rt_, n);
+    if (interrupt_)
+      rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, n * sizeof(int));
+    kernel_.setArg(0, tasks_.get());
+    kernel_.setArg(1, entries_.get());
+    kernel_.setArg(2, rays_.get());
+    kernel_.setArg(3, pe_tri_begin_.get());
+    kernel_.setArg(4, pe_triangles_.get());
+    kernel_.setArg(5, slot_hits_dev_.get());
+    kernel_.setArg(6, first_hit_key_.get());
+    kernel_.setArg(7, mode == HitMode::AnyHit ? 1 : 0);
+    kernel_.setArg(8, interrupt_ ? 1 : 0);
+    kernel_.setArg(9, seg_planes_.get());
+    kernel_.setArg(10, seg_stride_);
+    rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
+                                     cl::NDRange(tasks.size() * kPeLocalSize),
+                                     cl::NDRange(kPeLocalSize));
+    slot_hits_ = static_cast<const GrHit*>(rt_.queue().enqueueMapBuffer(
+        slot_hits_dev_.get(), CL_FALSE, CL_MAP_READ, 0, slots * sizeof(GrHit)));
+  });
 }
 
-void GridRtIntersector::releaseSlotHits() {
-  if (!slot_hits_) return;
-  rt_.queue().enqueueUnmapMemObject(slot_hits_dev_.get(), const_cast<GrHit*>(slot_hits_));
+GridRtIntersector::~GridRtIntersector() {
+  if (!slot_hits_ && !results_map_) return;
+  try {
+    rt_.runWithHostThreadsAsleep([&] { enqueueUnmaps(); });
+  } catch (...) {
+    // The context goes with the runtime anyway.
+  }
+}
+
+void GridRtIntersector::enqueueUnmaps() {
+  if (slot_hits_)
+    rt_.queue().enqueueUnmapMemObject(slot_hits_dev_.get(), const_cast<GrHit*>(slot_hits_));
+  if (results_map_)
+    rt_.queue().enqueueUnmapMemObject(results_.get(), const_cast<float*>(results_map_));
   slot_hits_ = nullptr;
+  results_map_ = nullptr;
 }
 
 void GridRtIntersector::finishBatch(const std::vector<int>& pairs_per_pe, size_t rays,
                                     uint64_t tests, size_t pairs, uint64_t skipped) {
-  releaseSlotHits();
   for (int pe = 0; pe < grid_.peCount(); ++pe) {
     rays_per_pe_[pe] += pairs_per_pe[pe];
     tests_per_pe_[pe] += uint64_t(pairs_per_pe[pe]) * grid_.triangleCountOfPe(pe);
@@ -174,8 +186,8 @@ namespace {
 // Maps `count` elements of a device buffer into host memory (no copy on a CPU device).
 template <typename T>
 T* mapBuffer(ClRuntime& rt, cl::Buffer& buffer, cl_map_flags flags, size_t count) {
-  return static_cast<T*>(
-      rt.queue().enqueueMapBuffer(buffer, CL_TRUE, flags, 0, std::max<size_t>(count, 1) * sizeof(T)));
+  return static_cast<T*>(rt.queue().enqueueMapBuffer(buffer, CL_FALSE, flags, 0,
+                                                     std::max<size_t>(count, 1) * sizeof(T)));
 }
 
 int popcount(int bits) { return __builtin_popcount(unsigned(bits)); }
@@ -206,9 +218,13 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   // Phase 1: the rays in bundle order, as planes, straight into the device buffer: the
   // directions always (a zero direction marks padding); origins and intervals only when
   // the rays do not all share those of the first ray (camera rays do).
-  planes_.reserve(rt_, GR_PLANES * stride);
-  float* planes = mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
-                                   GR_PLANES * stride);
+  float* planes = nullptr;
+  rt_.runWithHostThreadsAsleep([&] {
+    enqueueUnmaps();
+    planes_.reserve(rt_, GR_PLANES * stride);
+    planes = mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
+                              GR_PLANES * stride);
+  });
   const GrRay common = n ? rays[0] : GrRay{};
   auto sameStart = [&](const GrRay& r) {
     return r.ox == common.ox && r.oy == common.oy && r.oz == common.oz &&
@@ -242,12 +258,13 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       planes[GR_PLANE_TMAX * stride + b] = ray.tmax;
     }
   }
-  rt_.queue().enqueueUnmapMemObject(planes_.get(), planes);
   const size_t lanes = bundles.out_lanes, packets = lanes / kBundleLanes;
   const GrPacketMasks* masks = nullptr;
   const float *results = nullptr, *out_t = nullptr, *out_u = nullptr, *out_v = nullptr;
   const int* out_prim = nullptr;
-  if (!bundles.tasks.empty()) {
+  rt_.runWithHostThreadsAsleep([&] {
+    rt_.queue().enqueueUnmapMemObject(planes_.get(), planes);
+    if (bundles.tasks.empty()) return;
     bundle_tasks_.upload(rt_, bundles.tasks);
     // t, prim, u, v per lane, then the packets' masks (4 ints each): one buffer.
     const size_t result_floats = 4 * lanes + 4 * packets;
@@ -279,8 +296,9 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange,
                                      cl::NDRange(bundles.tasks.size() * kPeLocalSize),
                                      cl::NDRange(kPeLocalSize));
-    rt_.finishWithHostThreadsAsleep();
-    results = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
+    results = results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
+  });
+  if (results) {
     out_t = results;
     out_prim = reinterpret_cast<const int*>(results + lanes);
     out_u = results + 2 * lanes;
@@ -362,7 +380,6 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       }
     }
   }
-  if (results) rt_.queue().enqueueUnmapMemObject(results_.get(), const_cast<float*>(results));
   if (diagnostics) {
     list_length_known_ = true;
     for (int length : diagnostics->list_length)

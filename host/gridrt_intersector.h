@@ -38,6 +38,9 @@ class GridRtIntersector : public Intersector {
   // an earlier PE of the ray's list has a hit).
   GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid, bool interrupt,
                     const KernelOptions& kernel_options = {});
+  ~GridRtIntersector() override;
+  GridRtIntersector(const GridRtIntersector&) = delete;
+  GridRtIntersector& operator=(const GridRtIntersector&) = delete;
   std::string name() const override { return interrupt_ ? "gridrt-interrupt" : "gridrt"; }
   void intersect(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                  RayDiagnostics* diagnostics) override;
@@ -69,10 +72,13 @@ class GridRtIntersector : public Intersector {
   cl::Kernel kernel_;
   TraversalLists lists_;
   PeBins bins_;
-  // Phase 1's results, mapped from the device buffer (no copy on a CPU device) between
-  // runPes and releaseSlotHits; null when the batch had no pairs.
-  const GrHit* slot_hits_ = nullptr;
-  void releaseSlotHits();
+  // Phase 1's results, mapped from the device buffers (no copy on a CPU device) for phase
+  // 2 and unmapped with the next batch's device commands (an unmap on its own costs a
+  // wait of its own); null when not mapped.
+  const GrHit* slot_hits_ = nullptr;  // list path
+  const float* results_map_ = nullptr;  // bundle path
+  // Enqueues the unmaps of what is mapped (inside ClRuntime::runWithHostThreadsAsleep).
+  void enqueueUnmaps();
   std::vector<uint64_t> rays_per_pe_, tests_per_pe_;
   uint64_t max_list_length_ = 0;
   bool list_length_known_ = true;
