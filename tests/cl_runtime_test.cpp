@@ -1,0 +1,51 @@
+// ClRuntime::runWithHostThreadsAsleep: the commands `enqueue` queues have all run when it
+// returns, from any OpenMP thread count, and an exception from `enqueue` comes out of it
+// (a throw that left the parallel region inside would end the process).
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <numeric>
+#include <vector>
+
+#include "cl_runtime.h"
+#include "errors.h"
+
+namespace {
+
+using gridrt::ClRuntime;
+
+TEST(ClRuntime, CommandsHaveRunWhenItReturns) {
+  ClRuntime rt("");
+  const size_t n = 1 << 20;
+  std::vector<int> source(n), back(n, -1);
+  std::iota(source.begin(), source.end(), 0);
+  cl::Buffer buffer(rt.context(), CL_MEM_READ_WRITE, n * sizeof(int));
+  const int default_threads = omp_get_max_threads();
+  for (int threads : {1, 2, 4}) {
+    omp_set_num_threads(threads);
+    std::fill(back.begin(), back.end(), -1);
+    rt.runWithHostThreadsAsleep([&] {
+      rt.queue().enqueueWriteBuffer(buffer, CL_FALSE, 0, n * sizeof(int), source.data());
+      rt.queue().enqueueReadBuffer(buffer, CL_FALSE, 0, n * sizeof(int), back.data());
+    });
+    EXPECT_EQ(back, source) << threads << " threads";
+  }
+  omp_set_num_threads(default_threads);
+}
+
+TEST(ClRuntime, AnExceptionFromEnqueueIsRethrown) {
+  ClRuntime rt("");
+  EXPECT_THROW(rt.runWithHostThreadsAsleep([] { throw gridrt::RenderError("no room"); }),
+               gridrt::RenderError);
+  // The runtime still works afterwards.
+  int value = 0;
+  cl::Buffer buffer(rt.context(), CL_MEM_READ_WRITE, sizeof(int));
+  rt.runWithHostThreadsAsleep([&] {
+    const int seven = 7;
+    rt.queue().enqueueWriteBuffer(buffer, CL_TRUE, 0, sizeof(int), &seven);
+    rt.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, sizeof(int), &value);
+  });
+  EXPECT_EQ(value, 7);
+}
+
+}  // namespace
