@@ -211,7 +211,7 @@ void ClRuntime::runWithHostThreadsAsleep(const std::function<void()>& enqueue) {
   std::mutex mutex;
   std::condition_variable queued;
   bool ready = false;
-  std::exception_ptr error;  // no exception may leave a parallel region
+  std::exception_ptr error, wait_error;  // no exception may leave a parallel region
   // The workers sleep on `queued` until the commands are in, then in the marker's wait.
 #pragma omp parallel
   {
@@ -236,9 +236,17 @@ void ClRuntime::runWithHostThreadsAsleep(const std::function<void()>& enqueue) {
       std::unique_lock<std::mutex> lock(mutex);
       queued.wait(lock, [&] { return ready; });
     }
-    if (!error) marker.wait();
+    if (!error) {
+      try {
+        marker.wait();  // throws if a command failed
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!wait_error) wait_error = std::current_exception();
+      }
+    }
   }
   if (error) std::rethrow_exception(error);
+  if (wait_error) std::rethrow_exception(wait_error);
 }
 
 void ClRuntime::checkAllocation(size_t bytes, const std::string& what) const {
