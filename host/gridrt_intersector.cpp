@@ -184,6 +184,7 @@ void GridRtIntersector::intersectTowardsPoint(const glm::vec3& point,
 namespace {
 
 // Maps `count` elements of a device buffer into host memory (no copy on a CPU device).
+// Non-blocking: the pointer is usable once the enclosing runWithHostThreadsAsleep returns.
 template <typename T>
 T* mapBuffer(ClRuntime& rt, cl::Buffer& buffer, cl_map_flags flags, size_t count) {
   return static_cast<T*>(rt.queue().enqueueMapBuffer(buffer, CL_FALSE, flags, 0,
