@@ -37,12 +37,6 @@ class DeviceBuffer {
     return upload(rt, data.data(), data.size());
   }
 
-  // Non-blocking copy of `count` elements to element `offset` (room must be reserved).
-  void uploadAt(ClRuntime& rt, size_t offset, const T* data, size_t count) {
-    if (count)
-      rt.queue().enqueueWriteBuffer(buffer_, CL_FALSE, offset * sizeof(T), count * sizeof(T), data);
-  }
-
   // Blocking: returns once the data is copied, so `data` may be a temporary.
   cl::Buffer& uploadNow(ClRuntime& rt, const std::vector<T>& data) {
     reserve(rt, data.size());

@@ -36,17 +36,14 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
   tests_per_pe_.assign(grid.peCount(), 0);
 }
 
-void GridRtIntersector::runPes(const std::vector<GrRay>& rays,
-                               const std::vector<EntrySegment>& entries, size_t entry_count,
-                               const std::vector<GrPeTask>& tasks, size_t slots, HitMode mode) {
+void GridRtIntersector::runPes(const std::vector<GrRay>& rays, size_t slots, HitMode mode) {
   const size_t n = rays.size();
+  const std::vector<GrPeTask>& tasks = bins_.tasks;
   rt_.runWithHostThreadsAsleep([&] {
     enqueueUnmaps();
     if (tasks.empty()) return;
     rays_.upload(rt_, rays);
-    entries_.reserve(rt_, entry_count);
-    for (const EntrySegment& segment : entries)
-      entries_.uploadAt(rt_, segment.offset, segment.data, segment.count);
+    entries_.upload(rt_, bins_.entries);
     tasks_.upload(rt_, tasks);
     slot_hits_dev_.reserve(rt_, slots);
     first_hit_key_.reserve(rt_, n);
@@ -112,8 +109,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
 
   clock.restart();
   const size_t slots = lists_.entries.size();
-  runPes(rays, {{bins_.entries.data(), bins_.entries.size(), 0}}, bins_.entries.size(),
-         bins_.tasks, slots, mode);
+  runPes(rays, slots, mode);
   counters_.kernel_ms += clock.ms();
 
   // Phase 2: walk each ray's list nearest first; the first PE holding a hit wins.

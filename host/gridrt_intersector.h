@@ -83,19 +83,11 @@ class GridRtIntersector : public Intersector {
   uint64_t max_list_length_ = 0;
   bool list_length_known_ = true;
 
-  // Phase 1: uploads the batch and runs one work-group per task; slot_hits_ maps one hit
-  // (or a miss, or GR_SKIPPED) per entry slot.
-  // The pairs to upload: `count` entries from `data`, to element `offset` of the buffer.
-  struct EntrySegment {
-    const GrPeEntry* data;
-    size_t count;
-    size_t offset;
-  };
-  void runPes(const std::vector<GrRay>& rays, const std::vector<EntrySegment>& entries,
-              size_t entry_count, const std::vector<GrPeTask>& tasks, size_t slots,
-              HitMode mode);
-  // The end of a batch, for both paths: releases phase 1's results and adds the batch to
-  // the PE load and the counters.
+  // Phase 1: uploads the batch and its binned pairs (bins_) and runs one work-group per
+  // task; slot_hits_ maps one hit (or a miss, or GR_SKIPPED) per entry slot.
+  void runPes(const std::vector<GrRay>& rays, size_t slots, HitMode mode);
+  // The end of a batch, for both paths: adds the batch to the PE load and the counters
+  // (phase 1's results stay mapped until the next batch's device commands).
   void finishBatch(const std::vector<int>& pairs_per_pe, size_t rays, uint64_t tests,
                    size_t pairs, uint64_t skipped);
   // The bundle path: rays in bundle order, one work-group per task, then phase 2 over

@@ -448,7 +448,7 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       if (shadow_hits_[k].prim < 0) radiance_[shadows_[k].pixel] += shadows_[k].radiance;
   }
 
-  // The next generation: the spawned reflection and refraction rays, in thread order
+  // The next generation: the spawned reflection and refraction rays, in chunk order
   // (`rays` may be rays_ itself: read no more from here on).
   concatenateChunks(chunks, &Spawned::rays, &Spawned::paths, rays_, paths_);
 }
