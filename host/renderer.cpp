@@ -62,6 +62,18 @@ glm::vec3 reflectDirection(const glm::vec3& d, const glm::vec3& n) {
   return d - 2.0f * glm::dot(d, n) * n;
 }
 
+// The next free index of two parallel vectors whose first `count` elements are in use
+// (both grown when full): the shading loop writes its outputs in place, and its buffers
+// keep their sizes between frames.
+template <typename A, typename B>
+size_t nextSlot(std::vector<A>& a, std::vector<B>& b, size_t& count) {
+  if (count == a.size()) {
+    a.resize(std::max<size_t>(256, 2 * count));
+    b.resize(a.size());
+  }
+  return count++;
+}
+
 }  // namespace
 
 Renderer::Renderer(const Scene& scene, const Camera& camera, Intersector& intersector,
@@ -75,6 +87,7 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, Intersector& inters
     geometric_normals_[t] = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
   }
   lights_ = scene.has_lights ? scene.lights : std::vector<Light>{defaultLight(scene, camera)};
+  for (const Material& m : scene.materials) material_terms_.push_back(surfaceTerms(m));
 }
 
 void Renderer::traceInBatches(const std::vector<GrRay>& rays, std::vector<GrHit>& hits,
@@ -105,8 +118,8 @@ void Renderer::traceBatched(const std::vector<GrRay>& rays, HitMode mode,
                  });
 }
 
-void Renderer::traceShadows(double& ms) {
-  shadow_hits_.resize(shadow_rays_.size());
+void Renderer::traceShadows(Generation& g, double& ms) {
+  g.shadow_hits.resize(g.shadow_rays.size());
   for (size_t l = 0; l < lights_.size(); ++l) {
     const Light& light = lights_[l];
     // This light's rays (all of them when it is the only light).
@@ -114,13 +127,13 @@ void Renderer::traceShadows(double& ms) {
     light_ray_index_.clear();
     light_rays_.clear();
     if (!all)
-      for (size_t k = 0; k < shadows_.size(); ++k)
-        if (shadows_[k].light == int(l)) {
+      for (size_t k = 0; k < g.shadows.size(); ++k)
+        if (g.shadows[k].light == int(l)) {
           light_ray_index_.push_back(k);
-          light_rays_.push_back(shadow_rays_[k]);
+          light_rays_.push_back(g.shadow_rays[k]);
         }
-    const std::vector<GrRay>& rays = all ? shadow_rays_ : light_rays_;
-    std::vector<GrHit>& hits = all ? shadow_hits_ : light_hits_;
+    const std::vector<GrRay>& rays = all ? g.shadow_rays : light_rays_;
+    std::vector<GrHit>& hits = all ? g.shadow_hits : light_hits_;
     if (rays.empty()) continue;
     if (light.type == LightType::Directional) {
       traceBatched(rays, HitMode::AnyHit, hits, nullptr, ms);
@@ -131,22 +144,23 @@ void Renderer::traceShadows(double& ms) {
                      });
     }
     if (!all)
-      for (size_t i = 0; i < light_ray_index_.size(); ++i) shadow_hits_[light_ray_index_[i]] = hits[i];
+      for (size_t i = 0; i < light_ray_index_.size(); ++i) g.shadow_hits[light_ray_index_[i]] = hits[i];
   }
 }
 
-void Renderer::tracePrimary(const PixelWindow& window, RayDiagnostics* diagnostics, double& ms) {
+void Renderer::tracePrimary(const PixelWindow& window, std::vector<GrHit>& hits,
+                            RayDiagnostics* diagnostics, double& ms) {
   Stopwatch clock;
   // Bands of whole rows keep each batch a window of the image, as PinholeView requires.
   const int w = window.width();
   const int rows = std::max(1, int(kMaxBatchRays / size_t(w)));
   if (rows >= window.height()) {  // one batch: no copies
     PinholeView view = PinholeView::of(camera_, settings_.width, settings_.height, window);
-    intersector_.intersectPrimary(view, primary_rays_, hits_, diagnostics);
+    intersector_.intersectPrimary(view, primary_rays_, hits, diagnostics);
     ms += clock.ms();
     return;
   }
-  hits_.resize(primary_rays_.size());
+  hits.resize(primary_rays_.size());
   if (diagnostics) *diagnostics = RayDiagnostics{};
   RayDiagnostics part;
   for (int y = window.y0; y < window.y1; y += rows) {
@@ -155,7 +169,7 @@ void Renderer::tracePrimary(const PixelWindow& window, RayDiagnostics* diagnosti
     batch_rays_.assign(primary_rays_.begin() + first, primary_rays_.begin() + first + count);
     PinholeView view = PinholeView::of(camera_, settings_.width, settings_.height, band);
     intersector_.intersectPrimary(view, batch_rays_, batch_hits_, diagnostics ? &part : nullptr);
-    std::copy(batch_hits_.begin(), batch_hits_.end(), hits_.begin() + first);
+    std::copy(batch_hits_.begin(), batch_hits_.end(), hits.begin() + first);
     if (diagnostics) appendDiagnostics(*diagnostics, part);
   }
   ms += clock.ms();
@@ -266,6 +280,8 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
     order = block_order_.data();
   }
   const PrimaryPaths primary{spp, weight, order};
+  // Every depth's arrays exist before the loop: pointers into them stay valid.
+  if (generations_.size() < size_t(settings_.max_depth) + 2) generations_.resize(settings_.max_depth + 2);
   for (int depth = 0; !rays->empty() && depth <= settings_.max_depth; ++depth) {
     bool first = depth == 0;
     if (first) {
@@ -276,21 +292,23 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
         else ++frame.rays.refraction;
     }
     RayDiagnostics* diag = first && aov_pass && settings_.want_diagnostics ? &diagnostics : nullptr;
+    std::vector<GrHit>& hits = generations_[depth].hits;
     if (first && aov_pass && centre_only && !camera_.orthographic)
-      tracePrimary(*window, diag, frame.times.intersect_ms);
+      tracePrimary(*window, hits, diag, frame.times.intersect_ms);
     else
-      traceBatched(*rays, HitMode::Closest, hits_, diag, frame.times.intersect_ms);
+      traceBatched(*rays, HitMode::Closest, hits, diag, frame.times.intersect_ms);
     if (first && aov_pass && (settings_.want_aovs || settings_.want_diagnostics))
-      fillPrimaryAovs(frame.aovs, diagnostics, spp);
+      fillPrimaryAovs(frame.aovs, hits, diagnostics, spp);
     shadeGeneration(depth, *rays, paths, primary, frame);
-    rays = &rays_;
-    paths = &paths_;
+    rays = &generations_[depth + 1].rays;
+    paths = &generations_[depth + 1].paths;
     if (progress) progress(depth + 1, total_stages);
     if (settings_.primary_only) break;
   }
 }
 
-void Renderer::fillPrimaryAovs(PrimaryAovs& a, const RayDiagnostics& diagnostics, int spp) {
+void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrHit>& hits,
+                               const RayDiagnostics& diagnostics, int spp) {
   const size_t pixels = size_t(settings_.width) * settings_.height;
   const bool diag = settings_.want_diagnostics;
   a.depth.assign(pixels, -1.0f);
@@ -301,7 +319,7 @@ void Renderer::fillPrimaryAovs(PrimaryAovs& a, const RayDiagnostics& diagnostics
   a.list_length.assign(diag ? pixels : 0, 0.0f);
   for (size_t k = 0; k < window_pixels_.size(); ++k) {
     size_t p = size_t(window_pixels_[k]), r = k * spp;  // sample 0 of the pixel
-    const GrHit& hit = hits_[r];
+    const GrHit& hit = hits[r];
     if (hit.prim >= 0) {
       a.depth[p] = hit.t;
       a.primid[p] = float(hit.prim);
@@ -327,8 +345,9 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   const bool spawn = !settings_.primary_only && depth < settings_.max_depth;
   // Fixed slots per ray (one shadow ray per light, reflection + refraction) keep the
   // parallel loop free of shared appends; compacted afterwards in ray order.
-  ray_radiance_.resize(n);
-  std::vector<glm::vec3>& local = ray_radiance_;
+  Generation& g = generations_[depth];
+  g.radiance.resize(n);
+  std::vector<glm::vec3>& local = g.radiance;
   // Chunks handed out dynamically: the rays' cost varies across the image (background,
   // walls, mirror and glass), so a static split leaves one core waiting.
   const size_t chunks = (n + kShadeChunkRays - 1) / kShadeChunkRays;
@@ -337,10 +356,8 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
 #pragma omp parallel for schedule(dynamic, 1)
   for (long long chunk = 0; chunk < (long long)chunks; ++chunk) {
   Spawned& out = spawned_[chunk];
-  out.shadow_rays.clear();
-  out.shadows.clear();
-  out.rays.clear();
-  out.paths.clear();
+  out.shadow_count = 0;
+  out.ray_count = 0;
   const size_t chunk_end = std::min(n, size_t(chunk + 1) * kShadeChunkRays);
   for (size_t j = size_t(chunk) * kShadeChunkRays; j < chunk_end; ++j) {
     // The primary generation in its shading order: sample j % spp of the pixel at
@@ -352,7 +369,7 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
     const PathRay path = paths ? (*paths)[i]
                                : PathRay{window_pixels_[i / primary.spp], glm::vec3(primary.weight),
                                          RayKind::Primary};
-    const GrHit& hit = hits_[i];
+    const GrHit& hit = g.hits[i];
     glm::vec3 d(ray.dx, ray.dy, ray.dz);
     if (hit.prim < 0) {
       local[i] = path.weight * settings_.background;
@@ -360,6 +377,7 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
     }
     const int tri = hit.prim;
     const Material& mat = scene_.materials[scene_.material_of[tri]];
+    const SurfaceTerms& terms = material_terms_[scene_.material_of[tri]];
     glm::vec3 weight = path.weight;
     glm::vec3 p = glm::vec3(ray.ox, ray.oy, ray.oz) + hit.t * d;
     glm::vec3 ng = geometric_normals_[tri];
@@ -384,7 +402,6 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
     if (backface && mat.transmission > 0.0f && mat.attenuation_distance > 0.0f)
       weight *= glm::pow(glm::max(mat.attenuation_color, glm::vec3(1e-6f)),
                          glm::vec3(hit.t / mat.attenuation_distance));
-    SurfaceTerms terms = surfaceTerms(mat);
     local[i] = weight * (mat.emissive + settings_.ambient * terms.diffuse);
     const glm::vec3 origin(ray.ox, ray.oy, ray.oz);
     glm::vec3 above = offsetRayOrigin(p, ng, origin, settings_.ray_offset);
@@ -401,8 +418,9 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       glm::vec3 direct = terms.diffuse / kPi * e * cos_theta + terms.specular * e * highlight;
       glm::vec3 contribution = weight * direct;
       if (glm::length(contribution) == 0.0f) continue;
-      out.shadow_rays.push_back(makeRay(above, to_light, distance));
-      out.shadows.push_back(ShadowRay{path.pixel, int(l), contribution});
+      const size_t k = nextSlot(out.shadow_rays, out.shadows, out.shadow_count);
+      out.shadow_rays[k] = makeRay(above, to_light, distance);
+      out.shadows[k] = ShadowRay{path.pixel, int(l), contribution};
     }
     if (!spawn) continue;
     glm::vec3 reflect_weight = terms.mirror;
@@ -413,8 +431,9 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       glm::vec3 t_weight = weight * terms.transmission * (1.0f - f) * mat.base_color;
       if (f < 1.0f && refractDirection(d, n, eta, t_dir) && glm::dot(t_dir, ng) < 0.0f) {
         if (worthTracing(t_weight)) {
-          out.rays.push_back(makeRay(offsetRayOrigin(p, -ng, origin, settings_.ray_offset), t_dir, kInf));
-          out.paths.push_back(PathRay{path.pixel, t_weight, RayKind::Refraction});
+          const size_t k = nextSlot(out.rays, out.paths, out.ray_count);
+          out.rays[k] = makeRay(offsetRayOrigin(p, -ng, origin, settings_.ray_offset), t_dir, kInf);
+          out.paths[k] = PathRay{path.pixel, t_weight, RayKind::Refraction};
         }
       } else {
         f = 1.0f;  // total internal reflection
@@ -424,8 +443,9 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
     if (glm::length(reflect_weight) > 0.0f && worthTracing(weight * reflect_weight)) {
       glm::vec3 r = reflectDirection(d, n);
       if (glm::dot(r, ng) <= 0.0f) r = reflectDirection(d, ng);  // keep it above the surface
-      out.rays.push_back(makeRay(above, r, kInf));
-      out.paths.push_back(PathRay{path.pixel, weight * reflect_weight, RayKind::Reflection});
+      const size_t k = nextSlot(out.rays, out.paths, out.ray_count);
+      out.rays[k] = makeRay(above, r, kInf);
+      out.paths[k] = PathRay{path.pixel, weight * reflect_weight, RayKind::Reflection};
     }
   }
   }
@@ -440,33 +460,35 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   frame.times.shade_ms += clock.ms();
 
   // Shadow rays: any hit before the light means the light is occluded.
-  concatenateChunks(chunks, &Spawned::shadow_rays, &Spawned::shadows, shadow_rays_, shadows_);
-  frame.rays.shadow += shadow_rays_.size();
-  if (!shadow_rays_.empty()) {
-    traceShadows(frame.times.intersect_ms);
-    for (size_t k = 0; k < shadows_.size(); ++k)
-      if (shadow_hits_[k].prim < 0) radiance_[shadows_[k].pixel] += shadows_[k].radiance;
+  concatenateChunks(chunks, &Spawned::shadow_rays, &Spawned::shadows, &Spawned::shadow_count,
+                    g.shadow_rays, g.shadows);
+  frame.rays.shadow += g.shadow_rays.size();
+  if (!g.shadow_rays.empty()) {
+    traceShadows(g, frame.times.intersect_ms);
+    for (size_t k = 0; k < g.shadows.size(); ++k)
+      if (g.shadow_hits[k].prim < 0) radiance_[g.shadows[k].pixel] += g.shadows[k].radiance;
   }
 
-  // The next generation: the spawned reflection and refraction rays, in chunk order
-  // (`rays` may be rays_ itself: read no more from here on).
-  concatenateChunks(chunks, &Spawned::rays, &Spawned::paths, rays_, paths_);
+  // The next generation: the spawned reflection and refraction rays, in chunk order.
+  Generation& next = generations_[depth + 1];
+  concatenateChunks(chunks, &Spawned::rays, &Spawned::paths, &Spawned::ray_count, next.rays,
+                    next.paths);
 }
 
 template <typename Extra>
 void Renderer::concatenateChunks(size_t chunks, std::vector<GrRay> Spawned::*rays,
-                                 std::vector<Extra> Spawned::*extras, std::vector<GrRay>& all_rays,
-                                 std::vector<Extra>& all_extras) {
+                                 std::vector<Extra> Spawned::*extras, size_t Spawned::*count,
+                                 std::vector<GrRay>& all_rays, std::vector<Extra>& all_extras) {
   chunk_offsets_.assign(chunks + 1, 0);
   for (size_t c = 0; c < chunks; ++c)
-    chunk_offsets_[c + 1] = chunk_offsets_[c] + (spawned_[c].*rays).size();
+    chunk_offsets_[c + 1] = chunk_offsets_[c] + spawned_[c].*count;
   all_rays.resize(chunk_offsets_[chunks]);
   all_extras.resize(chunk_offsets_[chunks]);
 #pragma omp parallel for schedule(static)
   for (long long c = 0; c < (long long)chunks; ++c) {
     const Spawned& out = spawned_[c];
-    std::copy((out.*rays).begin(), (out.*rays).end(), all_rays.begin() + chunk_offsets_[c]);
-    std::copy((out.*extras).begin(), (out.*extras).end(), all_extras.begin() + chunk_offsets_[c]);
+    std::copy_n((out.*rays).begin(), out.*count, all_rays.begin() + chunk_offsets_[c]);
+    std::copy_n((out.*extras).begin(), out.*count, all_extras.begin() + chunk_offsets_[c]);
   }
 }
 

@@ -104,10 +104,12 @@ class Renderer {
   void renderPass(Frame& frame, int spp, int first_sample, float weight,
                   const PixelWindow* window, const std::function<void(int, int)>& progress);
   bool worthTracing(const glm::vec3& weight) const;
-  // Primary rays (one per pixel of `window`, in rays_) through Intersector::intersectPrimary.
-  void tracePrimary(const PixelWindow& window, RayDiagnostics* diagnostics, double& ms);
-  // Shades one generation (rays, their paths and hits_), adds the shadow rays' light and
-  // leaves the spawned generation in rays_ / paths_.
+  // Primary rays (one per pixel of `window`, in primary_rays_) through
+  // Intersector::intersectPrimary, their hits into `hits`.
+  void tracePrimary(const PixelWindow& window, std::vector<GrHit>& hits,
+                    RayDiagnostics* diagnostics, double& ms);
+  // Shades one generation (rays, their paths and generations_[depth].hits), adds the shadow
+  // rays' light and leaves the spawned rays in generations_[depth + 1].rays / paths.
   // The paths of primary rays are implicit: ray k * spp + s is sample s of window pixel
   // k, with throughput `weight`.
   // order (may be null: 0, 1, 2, ...) lists the window pixels in the order they are
@@ -118,19 +120,21 @@ class Renderer {
     const int* order;
   };
   // paths is null for the primary generation.
-  // Traces shadow_rays_ into shadow_hits_ (any hit), light by light: rays towards a point
-  // or spot light through Intersector::intersectTowardsPoint.
-  void traceShadows(double& ms);
+  struct Generation;
+  // Traces g.shadow_rays into g.shadow_hits (any hit), light by light: rays towards a
+  // point or spot light through Intersector::intersectTowardsPoint.
+  void traceShadows(Generation& g, double& ms);
   void shadeGeneration(int depth, const std::vector<GrRay>& rays,
                        const std::vector<PathRay>* paths, PrimaryPaths primary, Frame& frame);
-  void fillPrimaryAovs(PrimaryAovs& aovs, const RayDiagnostics& diagnostics, int spp);
+  void fillPrimaryAovs(PrimaryAovs& aovs, const std::vector<GrHit>& hits,
+                       const RayDiagnostics& diagnostics, int spp);
   struct Spawned;
   // The chunks' rays (and their shadows or paths) one after the other, in chunk order,
   // copied on all cores.
   template <typename Extra>
   void concatenateChunks(size_t chunks, std::vector<GrRay> Spawned::*rays,
-                         std::vector<Extra> Spawned::*extras, std::vector<GrRay>& all_rays,
-                         std::vector<Extra>& all_extras);
+                         std::vector<Extra> Spawned::*extras, size_t Spawned::*count,
+                         std::vector<GrRay>& all_rays, std::vector<Extra>& all_extras);
 
   const Scene& scene_;
   Camera camera_;
@@ -138,29 +142,42 @@ class Renderer {
   RenderSettings settings_;
   std::vector<glm::vec3> geometric_normals_;  // per triangle, unit
   std::vector<Light> lights_;                 // the scene's, or the default light
+  std::vector<SurfaceTerms> material_terms_;  // per material
 
-  // Reused between frames: the current generation, its hits, spawned rays.
   // Rays one chunk of a generation spawns while shading; concatenated in chunk order
   // afterwards, so the order is the rays' whatever thread shaded which chunk.
+  // The vectors keep their sizes between frames; the counts say how much is in use.
   struct Spawned {
     std::vector<GrRay> shadow_rays;
-    std::vector<ShadowRay> shadows;
+    std::vector<ShadowRay> shadows;  // as many as shadow_rays
+    size_t shadow_count = 0;
     std::vector<GrRay> rays;
-    std::vector<PathRay> paths;
+    std::vector<PathRay> paths;  // as many as rays
+    size_t ray_count = 0;
   };
-  std::vector<GrRay> primary_rays_, rays_, shadow_rays_, batch_rays_;
-  std::vector<GrHit> hits_, shadow_hits_, batch_hits_, light_hits_;
+  // One depth's arrays, kept from frame to frame, so each keeps about the size it had in
+  // the last frame: growing a std::vector zero-fills its new part, which one set shared
+  // by all depths did every frame (307k primary rays, then 25k, then 307k again).
+  struct Generation {
+    std::vector<GrRay> rays;  // the rays spawned for this depth (depth 0: primary_rays_)
+    std::vector<PathRay> paths;
+    std::vector<GrHit> hits;
+    std::vector<glm::vec3> radiance;  // per ray: what it adds to its pixel, shadows apart
+    std::vector<GrRay> shadow_rays;   // spawned at this depth's hits
+    std::vector<ShadowRay> shadows;
+    std::vector<GrHit> shadow_hits;
+  };
+  std::vector<Generation> generations_;  // by depth, max_depth + 2 of them
+  std::vector<GrRay> primary_rays_, batch_rays_;
+  std::vector<GrHit> batch_hits_, light_hits_;
   std::vector<GrRay> light_rays_;       // one light's shadow rays (several lights)
-  std::vector<size_t> light_ray_index_;  // ... and their indices in shadow_rays_
-  std::vector<PathRay> paths_;
-  std::vector<ShadowRay> shadows_;
+  std::vector<size_t> light_ray_index_;  // ... and their indices in the shadow rays
   std::vector<Spawned> spawned_;
   std::vector<size_t> chunk_offsets_;  // where each chunk's output starts (concatenateChunks)
   std::vector<int> window_pixels_;  // full-image index of each rendered pixel
   std::vector<int> block_order_;    // the window's pixels in 4x4 blocks (pixel_blocks.h)
   int block_order_width_ = 0, block_order_height_ = 0;  // the window block_order_ is for
   std::vector<glm::vec3> radiance_;  // per pixel accumulator
-  std::vector<glm::vec3> ray_radiance_;  // per ray of the current generation
 };
 
 }  // namespace gridrt

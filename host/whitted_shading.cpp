@@ -70,23 +70,4 @@ bool refractDirection(const glm::vec3& d, const glm::vec3& n, float eta, glm::ve
   return true;
 }
 
-glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n, const glm::vec3& ray_origin,
-                          const RayOffset& offset) {
-  if (!offset.robust) return p + offset.epsilon * n;
-  // Wächter & Binder's idea (Ray Tracing Gems, ch. 6) of an offset that scales with the
-  // coordinates, bounded here by the error of p = o + t*d, which grows with |o| as well
-  // as |p| (their fixed 1/65536 near the origin is too small for a far camera and too
-  // large for a tiny scene: tests/ray_offset_test.cpp).
-  float magnitude = 0.0f;
-  for (int a = 0; a < 3; ++a)
-    magnitude = std::max({magnitude, std::fabs(p[a]), std::fabs(ray_origin[a])});
-  float distance = kHitPointErrorUlps * std::ldexp(1.0f, -23) * magnitude;
-  glm::vec3 out = p + distance * n;
-  for (int a = 0; a < 3; ++a)
-    if (n[a] != 0.0f)
-      out[a] = std::nextafter(out[a], n[a] > 0.0f ? std::numeric_limits<float>::infinity()
-                                                  : -std::numeric_limits<float>::infinity());
-  return out;
-}
-
 }  // namespace gridrt

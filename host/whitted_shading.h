@@ -1,7 +1,12 @@
 // The Whitted/Phong terms of a surface and a light (README "Material mapping"), as pure
 // functions the wavefront renderer calls per hit.
 #pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <glm/glm.hpp>
+#include <limits>
 
 #include "scene.h"
 
@@ -45,9 +50,38 @@ struct RayOffset {
 // passes the re-intersection and shadow-acne tests at scales 1e-4..1e6; 64 is a 4x margin.
 constexpr float kHitPointErrorUlps = 64.0f;
 
+// std::nextafter(x, +inf) when `up`, else std::nextafter(x, -inf), without the library
+// call for finite x (the shading loop takes three per secondary origin).
+inline float nextFloat(float x, bool up) {
+  if (!std::isfinite(x)) return std::nextafter(x, up ? INFINITY : -INFINITY);
+  if (x == 0.0f) return up ? std::numeric_limits<float>::denorm_min()
+                           : -std::numeric_limits<float>::denorm_min();
+  uint32_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  bits = (x > 0.0f) == up ? bits + 1 : bits - 1;  // the magnitude one ulp up or down
+  std::memcpy(&x, &bits, sizeof x);
+  return x;
+}
+
 // p moved off the surface along `normal` (unit, on the side the new ray leaves towards);
-// ray_origin is the origin of the ray that found p.
-glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& normal,
-                          const glm::vec3& ray_origin, const RayOffset& offset);
+// ray_origin is the origin of the ray that found p. Inline: the shading loop calls it for
+// every secondary origin.
+inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n,
+                                 const glm::vec3& ray_origin, const RayOffset& offset) {
+  if (!offset.robust) return p + offset.epsilon * n;
+  // Waechter & Binder's idea (Ray Tracing Gems, ch. 6) of an offset that scales with the
+  // coordinates, bounded here by the error of p = o + t*d, which grows with |o| as well
+  // as |p| (their fixed 1/65536 near the origin is too small for a far camera and too
+  // large for a tiny scene: tests/ray_offset_test.cpp).
+  float magnitude = 0.0f;
+  for (int a = 0; a < 3; ++a)
+    magnitude = std::max({magnitude, std::fabs(p[a]), std::fabs(ray_origin[a])});
+  constexpr float kUlpOfOne = 0x1p-23f;  // float spacing at 1
+  float distance = kHitPointErrorUlps * kUlpOfOne * magnitude;
+  glm::vec3 out = p + distance * n;
+  for (int a = 0; a < 3; ++a)
+    if (n[a] != 0.0f) out[a] = nextFloat(out[a], n[a] > 0.0f);
+  return out;
+}
 
 }  // namespace gridrt

@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
+#include <random>
 
 #include "brute_intersector.h"
 #include "camera_rays.h"
@@ -150,6 +152,31 @@ TEST(SnellAndFresnel, NormalIncidenceReflectsFourPercentOffGlass) {
   EXPECT_NEAR(fresnelDielectric(1.0f, 1.0f / 1.5f), 0.04f, 1e-6f);
   EXPECT_NEAR(fresnelDielectric(1.0f, 1.5f), 0.04f, 1e-6f);
   EXPECT_NEAR(fresnelDielectric(0.0f, 1.0f / 1.5f), 1.0f, 1e-6f);  // grazing
+}
+
+// nextFloat is std::nextafter towards +-inf: zeros of both signs, denormals, the largest
+// floats, infinities, NaN and a million random bit patterns.
+TEST(NextFloat, EqualsNextafterEverywhere) {
+  auto same = [](float a, float b) {
+    return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, sizeof a) == 0;
+  };
+  const float kMax = std::numeric_limits<float>::max();
+  const float kDenorm = std::numeric_limits<float>::denorm_min();
+  std::vector<float> values = {0.0f, -0.0f, kDenorm, -kDenorm, 1.0f, -1.0f, kMax, -kMax,
+                               INFINITY, -INFINITY, NAN, std::numeric_limits<float>::min(),
+                               -std::numeric_limits<float>::min()};
+  std::mt19937 rng(3);
+  for (int k = 0; k < 1000000; ++k) {
+    uint32_t bits = rng();
+    float x;
+    std::memcpy(&x, &bits, sizeof x);
+    values.push_back(x);
+  }
+  int wrong = 0;
+  for (float x : values)
+    for (bool up : {false, true})
+      wrong += !same(nextFloat(x, up), std::nextafter(x, up ? INFINITY : -INFINITY));
+  EXPECT_EQ(wrong, 0);
 }
 
 // A glass slab (ior 1.5) tilted 45 degrees about the y axis in front of a wall that is red
