@@ -1,5 +1,7 @@
 #include "renderer.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -60,6 +62,26 @@ void appendDiagnostics(RayDiagnostics& all, const RayDiagnostics& batch) {
 
 glm::vec3 reflectDirection(const glm::vec3& d, const glm::vec3& n) {
   return d - 2.0f * glm::dot(d, n) * n;
+}
+
+// Calls add(i) for every i in [0, n) on all cores, where pixel_of(i) is the pixel entry i
+// adds to and each pixel's entries are consecutive (so in every generation: a pixel's
+// samples are consecutive in the primary order, and spawned rays and shadow rays follow
+// the order of the rays that spawned them). The threads' ranges end between pixels: no
+// two threads share a pixel, and each pixel's sum keeps the serial order.
+template <typename PixelOf, typename Add>
+void addInPixelRuns(size_t n, const PixelOf& pixel_of, const Add& add) {
+#pragma omp parallel
+  {
+    const size_t threads = omp_get_num_threads(), me = omp_get_thread_num();
+    auto boundary = [&](size_t k) {
+      size_t i = n * k / threads;
+      while (i > 0 && i < n && pixel_of(i) == pixel_of(i - 1)) ++i;
+      return i;
+    };
+    const size_t hi = boundary(me + 1);
+    for (size_t i = boundary(me); i < hi; ++i) add(i);
+  }
 }
 
 // The next free index of two parallel vectors whose first `count` elements are in use
@@ -450,7 +472,10 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   }
   }
   if (paths) {
-    for (size_t i = 0; i < n; ++i) radiance_[(*paths)[i].pixel] += local[i];
+    const std::vector<PathRay>& ps = *paths;
+    addInPixelRuns(
+        n, [&](size_t i) { return ps[i].pixel; },
+        [&](size_t i) { radiance_[ps[i].pixel] += local[i]; });
   } else {  // primary rays: each pixel's samples are consecutive, pixels distinct
 #pragma omp parallel for schedule(static)
     for (long long k = 0; k < (long long)(n / primary.spp); ++k)
@@ -465,8 +490,11 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   frame.rays.shadow += g.shadow_rays.size();
   if (!g.shadow_rays.empty()) {
     traceShadows(g, frame.times.intersect_ms);
-    for (size_t k = 0; k < g.shadows.size(); ++k)
-      if (g.shadow_hits[k].prim < 0) radiance_[g.shadows[k].pixel] += g.shadows[k].radiance;
+    addInPixelRuns(
+        g.shadows.size(), [&](size_t k) { return g.shadows[k].pixel; },
+        [&](size_t k) {
+          if (g.shadow_hits[k].prim < 0) radiance_[g.shadows[k].pixel] += g.shadows[k].radiance;
+        });
   }
 
   // The next generation: the spawned reflection and refraction rays, in chunk order.
