@@ -214,7 +214,8 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
 
   // Phase 1: the rays in bundle order, as planes, straight into the device buffer: the
   // directions always (a zero direction marks padding); origins and intervals only when
-  // the rays do not all share those of the first ray (camera rays do).
+  // the rays do not all share those of the first ray (camera rays do). Rays without a
+  // culling frame (shadow rays: each from its own hit point) get all planes in one pass.
   float* planes = nullptr;
   rt_.runWithHostThreadsAsleep([&] {
     enqueueUnmaps();
@@ -231,7 +232,14 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   // without a frame (light bundles) nothing is checked.
   const bool check_cover = cull_frame != nullptr;
   const GrCullFrame frame = check_cover ? *cull_frame : GrCullFrame{};
-  int differing = 0, uncovered = 0;
+  auto writeStarts = [&](long long b, const GrRay& ray) {
+    planes[GR_PLANE_OX * stride + b] = ray.ox;
+    planes[GR_PLANE_OY * stride + b] = ray.oy;
+    planes[GR_PLANE_OZ * stride + b] = ray.oz;
+    planes[GR_PLANE_TMIN * stride + b] = ray.tmin;
+    planes[GR_PLANE_TMAX * stride + b] = ray.tmax;
+  };
+  int differing = check_cover ? 0 : 1, uncovered = 0;
 #pragma omp parallel for schedule(static) reduction(+ : differing, uncovered)
   for (long long b = 0; b < (long long)stride; ++b) {
     const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
@@ -239,20 +247,19 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     planes[GR_PLANE_DX * stride + b] = r >= 0 ? ray.dx : 0.0f;
     planes[GR_PLANE_DY * stride + b] = r >= 0 ? ray.dy : 0.0f;
     planes[GR_PLANE_DZ * stride + b] = r >= 0 ? ray.dz : 0.0f;
-    differing += !sameStart(ray);
-    uncovered += check_cover && r >= 0 && !cullFrameCovers(frame, ray);
+    if (check_cover) {
+      differing += !sameStart(ray);
+      uncovered += r >= 0 && !cullFrameCovers(frame, ray);
+    } else {
+      writeStarts(b, ray);
+    }
   }
   const bool common_origin = differing == 0;
-  if (!common_origin) {
+  if (!common_origin && check_cover) {
 #pragma omp parallel for schedule(static)
     for (long long b = 0; b < (long long)stride; ++b) {
       const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
-      const GrRay ray = r >= 0 ? rays[r] : common;
-      planes[GR_PLANE_OX * stride + b] = ray.ox;
-      planes[GR_PLANE_OY * stride + b] = ray.oy;
-      planes[GR_PLANE_OZ * stride + b] = ray.oz;
-      planes[GR_PLANE_TMIN * stride + b] = ray.tmin;
-      planes[GR_PLANE_TMAX * stride + b] = ray.tmax;
+      writeStarts(b, r >= 0 ? rays[r] : common);
     }
   }
   const size_t lanes = bundles.out_lanes, packets = lanes / kBundleLanes;
