@@ -622,12 +622,43 @@ TEST(GridDda, TmaxInsideTheGridStopsTheWalkThere) {
   expectConsistent(g, o, seq, reference(g, o));
 }
 
-// computeTraversalLists = the DDA walk filtered to non-empty voxels, ray by ray.
-TEST(TraversalLists, MatchTheDdaWalkFilteredToNonEmptyVoxels) {
-  std::mt19937 rng(17);
+// The lists of rays[0..count) against the scalar DDA walk filtered to non-empty voxels,
+// ray by ray, bit for bit.
+void expectListsMatchTheWalk(const UniformGrid& grid, const GrRay* rays, size_t count,
+                             const TraversalLists& lists) {
+  ASSERT_EQ(lists.rayCount(), count);
+  ASSERT_EQ(lists.begin.size(), count + 1);
+  ASSERT_EQ(lists.begin[0], 0);
+  for (size_t r = 0; r < count; ++r) ASSERT_LE(lists.begin[r], lists.begin[r + 1]);
+  ASSERT_EQ(size_t(lists.begin[count]), lists.entries.size());
+  for (size_t r = 0; r < count; ++r) {
+    const GrRay& ray = rays[r];
+    std::vector<ListEntry> want;
+    GrDda s;
+    if (gr_dda_begin(&grid.info, ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, ray.tmin,
+                     ray.tmax, &s)) {
+      do {
+        int pe = grid.pe_of_voxel[s.ix + grid.info.nx * (s.iy + grid.info.ny * s.iz)];
+        if (pe >= 0) want.push_back({pe, s.t_enter, s.t_exit});
+      } while (gr_dda_step(&grid.info, &s));
+    }
+    ASSERT_EQ(lists.lengthOf(r), int(want.size())) << "ray " << r;
+    for (size_t k = 0; k < want.size(); ++k) {
+      const ListEntry& e = lists.entries[lists.begin[r] + k];
+      ASSERT_EQ(e.pe, want[k].pe) << "ray " << r << " entry " << k;
+      ASSERT_EQ(std::memcmp(&e.t_enter, &want[k].t_enter, sizeof(float)), 0) << "ray " << r;
+      ASSERT_EQ(std::memcmp(&e.t_exit, &want[k].t_exit, sizeof(float)), 0) << "ray " << r;
+      if (k > 0) {
+        ASSERT_LE(lists.entries[lists.begin[r] + k - 1].t_exit, e.t_enter);
+      }
+    }
+  }
+}
+
+UniformGrid randomTriangleGrid(std::mt19937& rng, int triangles, glm::ivec3 dims) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   Scene scene;
-  for (int t = 0; t < 60; ++t) {
+  for (int t = 0; t < triangles; ++t) {
     glm::vec3 c(4.0f * u(rng), 3.0f * u(rng), 2.0f * u(rng));
     for (int k = 0; k < 3; ++k)
       scene.positions.push_back(c + 0.3f * glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f));
@@ -635,8 +666,15 @@ TEST(TraversalLists, MatchTheDdaWalkFilteredToNonEmptyVoxels) {
   auto tris = prepareTriangles(scene);
   GridSettings settings;
   settings.automatic = false;
-  settings.dims = {9, 7, 5};
-  UniformGrid grid = buildUniformGrid(tris, sceneBounds(scene), settings);
+  settings.dims = dims;
+  return buildUniformGrid(tris, sceneBounds(scene), settings);
+}
+
+// computeTraversalLists = the DDA walk filtered to non-empty voxels, ray by ray.
+TEST(TraversalLists, MatchTheDdaWalkFilteredToNonEmptyVoxels) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  UniformGrid grid = randomTriangleGrid(rng, 60, {9, 7, 5});
   ASSERT_GT(grid.peCount(), 10);
   ASSERT_LT(size_t(grid.peCount()), grid.voxelCount());  // some voxels are empty
 
@@ -660,39 +698,69 @@ TEST(TraversalLists, MatchTheDdaWalkFilteredToNonEmptyVoxels) {
     for (size_t count : {rays.size(), size_t(0), size_t(2), rays.size() / 2}) {
       SCOPED_TRACE(std::to_string(threads) + " threads, " + std::to_string(count) + " rays");
       computeTraversalLists(grid, rays.data(), count, lists);  // reuses the scratch
-      ASSERT_EQ(lists.rayCount(), count);
-      ASSERT_EQ(lists.begin.size(), count + 1);
-      ASSERT_EQ(lists.begin[0], 0);
-      for (size_t r = 0; r < count; ++r) ASSERT_LE(lists.begin[r], lists.begin[r + 1]);
-      ASSERT_EQ(size_t(lists.begin[count]), lists.entries.size());
-      for (size_t r = 0; r < count; ++r) {
-        const GrRay& ray = rays[r];
-        std::vector<ListEntry> want;
-        GrDda s;
-        if (gr_dda_begin(&grid.info, ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, ray.tmin,
-                         ray.tmax, &s)) {
-          do {
-            int pe = grid.pe_of_voxel[s.ix + grid.info.nx * (s.iy + grid.info.ny * s.iz)];
-            if (pe >= 0) want.push_back({pe, s.t_enter, s.t_exit});
-          } while (gr_dda_step(&grid.info, &s));
-        }
-        ASSERT_EQ(lists.lengthOf(r), int(want.size())) << "ray " << r;
-        for (size_t k = 0; k < want.size(); ++k) {
-          const ListEntry& e = lists.entries[lists.begin[r] + k];
-          ASSERT_EQ(e.pe, want[k].pe) << "ray " << r << " entry " << k;
-          ASSERT_EQ(std::memcmp(&e.t_enter, &want[k].t_enter, sizeof(float)), 0) << "ray " << r;
-          ASSERT_EQ(std::memcmp(&e.t_exit, &want[k].t_exit, sizeof(float)), 0) << "ray " << r;
-          if (k > 0) {
-            ASSERT_LE(lists.entries[lists.begin[r] + k - 1].t_exit, e.t_enter);
-          }
-        }
-      }
+      expectListsMatchTheWalk(grid, rays.data(), count, lists);
       if (count == rays.size()) total_entries = lists.entries.size();
     }
   }
   omp_set_num_threads(saved);
   EXPECT_GT(total_entries, rays.size());  // the rays really pierce PEs
   EXPECT_EQ(lists.rayCount(), rays.size() / 2);
+}
+
+// Where methods fail: rays whose components come from the values a DDA trips over (zeros of
+// both signs, subnormals, the smallest normal, huge, infinite, NaN), origins on voxel
+// planes, edges and corners, and odd intervals (negative, empty, NaN). The lists (walked
+// 16 rays at a time where the build has AVX-512, dda_packet.h) must still equal the scalar
+// walk bit for bit.
+TEST(TraversalLists, MatchTheDdaWalkForRaysThatTripDdas) {
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  UniformGrid grid = randomTriangleGrid(rng, 80, {7, 6, 5});
+  const GrGridInfo& g = grid.info;
+  const float denorm = std::numeric_limits<float>::denorm_min();
+  const float tiny = std::numeric_limits<float>::min();
+  const float odd_components[] = {0.0f, -0.0f, denorm, -denorm, 1e-40f, tiny, -tiny,
+                                  1e-30f, 1e30f, -1e30f, kInf, -kInf, kNaN};
+  const float odd_intervals[] = {0.0f, -1.0f, 1e-30f, 0.5f, 2.0f, kInf, -kInf, kNaN};
+  auto pick = [&](const float* values, size_t n) { return values[rng() % n]; };
+  std::vector<GrRay> rays;
+  for (int i = 0; i < 200000; ++i) {
+    glm::vec3 o = randomOrigin(rng, g);
+    glm::vec3 d = someDirection(rng, g, o);
+    switch (i % 8) {
+      case 0: d[rng() % 3] = pick(odd_components, std::size(odd_components)); break;
+      case 1:  // on a voxel plane of each axis
+        o = glm::vec3(g.minx + float(rng() % (g.nx + 1)) * g.cellx,
+                      g.miny + float(rng() % (g.ny + 1)) * g.celly,
+                      g.minz + float(rng() % (g.nz + 1)) * g.cellz);
+        break;
+      case 2:  // on a plane, along it, through edges
+        o[rng() % 3] = g.minx + float(rng() % (g.nx + 1)) * g.cellx;
+        d = glm::vec3(float(int(rng() % 3) - 1), float(int(rng() % 3) - 1), float(int(rng() % 3) - 1));
+        break;
+      case 3: o[rng() % 3] = pick(odd_components, std::size(odd_components)); break;
+      case 4: {  // on a voxel plane, moving along it by an odd amount (0 * inf is NaN)
+        const int a = rng() % 3;
+        const float mins[3] = {g.minx, g.miny, g.minz}, cells[3] = {g.cellx, g.celly, g.cellz};
+        const int n[3] = {g.nx, g.ny, g.nz};
+        o[a] = mins[a] + float(rng() % (n[a] + 1)) * cells[a];
+        d[a] = pick(odd_components, std::size(odd_components));
+        break;
+      }
+      default: break;
+    }
+    float tmin = i % 5 == 0 ? pick(odd_intervals, std::size(odd_intervals)) : 0.0f;
+    float tmax = i % 7 == 0 ? pick(odd_intervals, std::size(odd_intervals)) : kInf;
+    if (i % 11 == 0) tmax = 10.0f * u(rng);
+    rays.push_back({o.x, o.y, o.z, tmin, d.x, d.y, d.z, tmax});
+  }
+  TraversalLists lists;
+  for (size_t count : {rays.size(), size_t(1), size_t(17), size_t(4099)}) {
+    SCOPED_TRACE(std::to_string(count) + " rays");
+    computeTraversalLists(grid, rays.data(), count, lists);
+    expectListsMatchTheWalk(grid, rays.data(), count, lists);
+  }
+  EXPECT_GT(lists.entries.size(), size_t(1000));  // the rays really pierce PEs
 }
 
 }  // namespace
