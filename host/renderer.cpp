@@ -140,8 +140,8 @@ void Renderer::traceBatched(const std::vector<GrRay>& rays, HitMode mode,
                  });
 }
 
-void Renderer::traceShadows(Generation& g, double& ms) {
-  g.shadow_hits.resize(g.shadow_rays.size());
+void Renderer::traceShadows(double& ms) {
+  shadow_hits_.resize(shadow_rays_.size());
   for (size_t l = 0; l < lights_.size(); ++l) {
     const Light& light = lights_[l];
     // This light's rays (all of them when it is the only light).
@@ -149,13 +149,13 @@ void Renderer::traceShadows(Generation& g, double& ms) {
     light_ray_index_.clear();
     light_rays_.clear();
     if (!all)
-      for (size_t k = 0; k < g.shadows.size(); ++k)
-        if (g.shadows[k].light == int(l)) {
+      for (size_t k = 0; k < shadows_.size(); ++k)
+        if (shadows_[k].light == int(l)) {
           light_ray_index_.push_back(k);
-          light_rays_.push_back(g.shadow_rays[k]);
+          light_rays_.push_back(shadow_rays_[k]);
         }
-    const std::vector<GrRay>& rays = all ? g.shadow_rays : light_rays_;
-    std::vector<GrHit>& hits = all ? g.shadow_hits : light_hits_;
+    const std::vector<GrRay>& rays = all ? shadow_rays_ : light_rays_;
+    std::vector<GrHit>& hits = all ? shadow_hits_ : light_hits_;
     if (rays.empty()) continue;
     if (light.type == LightType::Directional) {
       traceBatched(rays, HitMode::AnyHit, hits, nullptr, ms);
@@ -166,7 +166,7 @@ void Renderer::traceShadows(Generation& g, double& ms) {
                      });
     }
     if (!all)
-      for (size_t i = 0; i < light_ray_index_.size(); ++i) g.shadow_hits[light_ray_index_[i]] = hits[i];
+      for (size_t i = 0; i < light_ray_index_.size(); ++i) shadow_hits_[light_ray_index_[i]] = hits[i];
   }
 }
 
@@ -284,7 +284,8 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   // AOVs come from the first pass (window given), sample 0 of each pixel.
   const bool aov_pass = window != nullptr;
   RayDiagnostics diagnostics;
-  int total_stages = settings_.primary_only ? 1 : settings_.max_depth + 1;
+  // The generations, then the shadow rays of all of them.
+  const int total_stages = (settings_.primary_only ? 1 : settings_.max_depth + 1) + 1;
   // The generation being traced: the primary rays (their paths implicit: sample s of
   // window pixel k is ray k * spp + s), then the rays each one spawns.
   const std::vector<GrRay>* rays = &primary_rays_;
@@ -304,6 +305,8 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   const PrimaryPaths primary{spp, weight, order};
   // Every depth's arrays exist before the loop: pointers into them stay valid.
   if (generations_.size() < size_t(settings_.max_depth) + 2) generations_.resize(settings_.max_depth + 2);
+  size_t shadow_total = 0;
+  int depths = 0;
   for (int depth = 0; !rays->empty() && depth <= settings_.max_depth; ++depth) {
     bool first = depth == 0;
     if (first) {
@@ -321,11 +324,48 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
       traceBatched(*rays, HitMode::Closest, hits, diag, frame.times.intersect_ms);
     if (first && aov_pass && (settings_.want_aovs || settings_.want_diagnostics))
       fillPrimaryAovs(frame.aovs, hits, diagnostics, spp);
-    shadeGeneration(depth, *rays, paths, primary, frame);
+    shadow_total += shadeGeneration(depth, *rays, paths, primary, shadow_total, frame);
+    depths = depth + 1;
     rays = &generations_[depth + 1].rays;
     paths = &generations_[depth + 1].paths;
     if (progress) progress(depth + 1, total_stages);
     if (settings_.primary_only) break;
+  }
+
+  // The shadow rays of every depth in one batch (any hit before the light means it is
+  // occluded), then the pass's light into the pixels.
+  shadow_rays_.resize(shadow_total);
+  shadows_.resize(shadow_total);
+  frame.rays.shadow += shadow_total;
+  if (shadow_total) traceShadows(frame.times.intersect_ms);
+  clock.restart();
+  addPassRadiance(depths, primary);
+  frame.times.shade_ms += clock.ms();
+  if (progress) progress(total_stages, total_stages);
+}
+
+void Renderer::addPassRadiance(int depths, PrimaryPaths primary) {
+  for (int depth = 0; depth < depths; ++depth) {
+    const Generation& g = generations_[depth];
+    const std::vector<glm::vec3>& local = g.radiance;
+    if (depth > 0) {
+      const std::vector<PathRay>& ps = g.paths;
+      addInPixelRuns(
+          ps.size(), [&](size_t i) { return ps[i].pixel; },
+          [&](size_t i) { radiance_[ps[i].pixel] += local[i]; });
+    } else {  // primary rays: each pixel's samples are consecutive, pixels distinct
+#pragma omp parallel for schedule(static)
+      for (long long k = 0; k < (long long)(local.size() / primary.spp); ++k)
+        for (int s = 0; s < primary.spp; ++s)
+          radiance_[window_pixels_[k]] += local[size_t(k) * primary.spp + s];
+    }
+    const ShadowRay* shadows = shadows_.data() + g.first_shadow;
+    const GrHit* hits = shadow_hits_.data() + g.first_shadow;
+    addInPixelRuns(
+        g.shadow_count, [&](size_t k) { return shadows[k].pixel; },
+        [&](size_t k) {
+          if (hits[k].prim < 0) radiance_[shadows[k].pixel] += shadows[k].radiance;
+        });
   }
 }
 
@@ -359,9 +399,9 @@ bool Renderer::worthTracing(const glm::vec3& weight) const {
   return std::max({weight.x, weight.y, weight.z}) >= settings_.min_path_weight;
 }
 
-void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
-                               const std::vector<PathRay>* paths, PrimaryPaths primary,
-                               Frame& frame) {
+size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
+                                 const std::vector<PathRay>* paths, PrimaryPaths primary,
+                                 size_t shadow_offset, Frame& frame) {
   Stopwatch clock;
   const size_t n = rays.size();
   const bool spawn = !settings_.primary_only && depth < settings_.max_depth;
@@ -471,53 +511,39 @@ void Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
     }
   }
   }
-  if (paths) {
-    const std::vector<PathRay>& ps = *paths;
-    addInPixelRuns(
-        n, [&](size_t i) { return ps[i].pixel; },
-        [&](size_t i) { radiance_[ps[i].pixel] += local[i]; });
-  } else {  // primary rays: each pixel's samples are consecutive, pixels distinct
-#pragma omp parallel for schedule(static)
-    for (long long k = 0; k < (long long)(n / primary.spp); ++k)
-      for (int s = 0; s < primary.spp; ++s)
-        radiance_[window_pixels_[k]] += local[size_t(k) * primary.spp + s];
-  }
   frame.times.shade_ms += clock.ms();
 
-  // Shadow rays: any hit before the light means the light is occluded.
-  concatenateChunks(chunks, &Spawned::shadow_rays, &Spawned::shadows, &Spawned::shadow_count,
-                    g.shadow_rays, g.shadows);
-  frame.rays.shadow += g.shadow_rays.size();
-  if (!g.shadow_rays.empty()) {
-    traceShadows(g, frame.times.intersect_ms);
-    addInPixelRuns(
-        g.shadows.size(), [&](size_t k) { return g.shadows[k].pixel; },
-        [&](size_t k) {
-          if (g.shadow_hits[k].prim < 0) radiance_[g.shadows[k].pixel] += g.shadows[k].radiance;
-        });
-  }
+  // The shadow rays after the earlier depths' (traced after the last depth).
+  g.first_shadow = shadow_offset;
+  g.shadow_count = concatenateChunks(chunks, &Spawned::shadow_rays, &Spawned::shadows,
+                                     &Spawned::shadow_count, shadow_rays_, shadows_, shadow_offset);
 
   // The next generation: the spawned reflection and refraction rays, in chunk order.
   Generation& next = generations_[depth + 1];
-  concatenateChunks(chunks, &Spawned::rays, &Spawned::paths, &Spawned::ray_count, next.rays,
-                    next.paths);
+  const size_t spawned = concatenateChunks(chunks, &Spawned::rays, &Spawned::paths,
+                                           &Spawned::ray_count, next.rays, next.paths, 0);
+  next.rays.resize(spawned);
+  next.paths.resize(spawned);
+  return g.shadow_count;
 }
 
 template <typename Extra>
-void Renderer::concatenateChunks(size_t chunks, std::vector<GrRay> Spawned::*rays,
-                                 std::vector<Extra> Spawned::*extras, size_t Spawned::*count,
-                                 std::vector<GrRay>& all_rays, std::vector<Extra>& all_extras) {
-  chunk_offsets_.assign(chunks + 1, 0);
+size_t Renderer::concatenateChunks(size_t chunks, std::vector<GrRay> Spawned::*rays,
+                                   std::vector<Extra> Spawned::*extras, size_t Spawned::*count,
+                                   std::vector<GrRay>& all_rays, std::vector<Extra>& all_extras,
+                                   size_t offset) {
+  chunk_offsets_.assign(chunks + 1, offset);
   for (size_t c = 0; c < chunks; ++c)
     chunk_offsets_[c + 1] = chunk_offsets_[c] + spawned_[c].*count;
-  all_rays.resize(chunk_offsets_[chunks]);
-  all_extras.resize(chunk_offsets_[chunks]);
+  if (all_rays.size() < chunk_offsets_[chunks]) all_rays.resize(chunk_offsets_[chunks]);
+  if (all_extras.size() < chunk_offsets_[chunks]) all_extras.resize(chunk_offsets_[chunks]);
 #pragma omp parallel for schedule(static)
   for (long long c = 0; c < (long long)chunks; ++c) {
     const Spawned& out = spawned_[c];
     std::copy_n((out.*rays).begin(), out.*count, all_rays.begin() + chunk_offsets_[c]);
     std::copy_n((out.*extras).begin(), out.*count, all_extras.begin() + chunk_offsets_[c]);
   }
+  return chunk_offsets_[chunks] - offset;
 }
 
 }  // namespace gridrt

@@ -1,6 +1,8 @@
 // The Whitted renderer: a wavefront loop on the host. Generate a batch of rays, have the
 // intersector find their hits on the device, shade on the host (all cores), spawn the
-// next batch (shadow rays per light, reflection and refraction), until max depth.
+// next batch (reflection and refraction) and shadow rays per light, until max depth.
+// Nothing later depends on a shadow ray, so the shadow rays of all depths are traced in
+// one batch at the end of the pass, and only then is the light added to the pixels.
 #pragma once
 #include <array>
 #include <functional>
@@ -108,8 +110,10 @@ class Renderer {
   // Intersector::intersectPrimary, their hits into `hits`.
   void tracePrimary(const PixelWindow& window, std::vector<GrHit>& hits,
                     RayDiagnostics* diagnostics, double& ms);
-  // Shades one generation (rays, their paths and generations_[depth].hits), adds the shadow
-  // rays' light and leaves the spawned rays in generations_[depth + 1].rays / paths.
+  // Shades one generation (rays, their paths and generations_[depth].hits): leaves what
+  // each ray adds to its pixel in generations_[depth].radiance, appends its shadow rays
+  // to shadow_rays_ / shadows_ from `shadow_offset` on (returns how many) and leaves the
+  // spawned rays in generations_[depth + 1].rays / paths.
   // The paths of primary rays are implicit: ray k * spp + s is sample s of window pixel
   // k, with throughput `weight`.
   // order (may be null: 0, 1, 2, ...) lists the window pixels in the order they are
@@ -121,20 +125,27 @@ class Renderer {
   };
   // paths is null for the primary generation.
   struct Generation;
-  // Traces g.shadow_rays into g.shadow_hits (any hit), light by light: rays towards a
+  // Traces shadow_rays_ into shadow_hits_ (any hit), light by light: rays towards a
   // point or spot light through Intersector::intersectTowardsPoint.
-  void traceShadows(Generation& g, double& ms);
-  void shadeGeneration(int depth, const std::vector<GrRay>& rays,
-                       const std::vector<PathRay>* paths, PrimaryPaths primary, Frame& frame);
+  void traceShadows(double& ms);
+  size_t shadeGeneration(int depth, const std::vector<GrRay>& rays,
+                         const std::vector<PathRay>* paths, PrimaryPaths primary,
+                         size_t shadow_offset, Frame& frame);
+  // Adds depths [0, depths) of the pass to radiance_ in the order a depth-by-depth
+  // renderer would: each depth's own radiance, then its shadow rays that reached their
+  // light (so every pixel's sum is the same, bit for bit).
+  void addPassRadiance(int depths, PrimaryPaths primary);
   void fillPrimaryAovs(PrimaryAovs& aovs, const std::vector<GrHit>& hits,
                        const RayDiagnostics& diagnostics, int spp);
   struct Spawned;
   // The chunks' rays (and their shadows or paths) one after the other, in chunk order,
-  // copied on all cores.
+  // copied on all cores to all_rays / all_extras from `offset` on (both grown if too
+  // short, never shrunk); returns how many.
   template <typename Extra>
-  void concatenateChunks(size_t chunks, std::vector<GrRay> Spawned::*rays,
-                         std::vector<Extra> Spawned::*extras, size_t Spawned::*count,
-                         std::vector<GrRay>& all_rays, std::vector<Extra>& all_extras);
+  size_t concatenateChunks(size_t chunks, std::vector<GrRay> Spawned::*rays,
+                           std::vector<Extra> Spawned::*extras, size_t Spawned::*count,
+                           std::vector<GrRay>& all_rays, std::vector<Extra>& all_extras,
+                           size_t offset);
 
   const Scene& scene_;
   Camera camera_;
@@ -163,13 +174,16 @@ class Renderer {
     std::vector<PathRay> paths;
     std::vector<GrHit> hits;
     std::vector<glm::vec3> radiance;  // per ray: what it adds to its pixel, shadows apart
-    std::vector<GrRay> shadow_rays;   // spawned at this depth's hits
-    std::vector<ShadowRay> shadows;
-    std::vector<GrHit> shadow_hits;
+    size_t first_shadow = 0, shadow_count = 0;  // its shadow rays in shadow_rays_
   };
   std::vector<Generation> generations_;  // by depth, max_depth + 2 of them
   std::vector<GrRay> primary_rays_, batch_rays_;
   std::vector<GrHit> batch_hits_, light_hits_;
+  // The pass's shadow rays, depth after depth (Generation::first_shadow), with the pixel
+  // and light each belongs to, and their hits.
+  std::vector<GrRay> shadow_rays_;
+  std::vector<ShadowRay> shadows_;
+  std::vector<GrHit> shadow_hits_;
   std::vector<GrRay> light_rays_;       // one light's shadow rays (several lights)
   std::vector<size_t> light_ray_index_;  // ... and their indices in the shadow rays
   std::vector<Spawned> spawned_;
