@@ -37,8 +37,8 @@ struct Axis {
   float grid_min, cell;
   int n;
 
-  // gr_next_boundary for the lanes in `m`: (min + k * cell - o) * inv, infinite when the
-  // step is 0, k = i + 1 stepping up, i stepping down.
+  // gr_next_boundary in every lane: (min + k * cell - o) * inv, infinite where the step
+  // is 0, k = i + 1 stepping up, i stepping down.
   __m512 nextBoundary() const {
     const __mmask16 up = _mm512_cmpgt_epi32_mask(step, _mm512_setzero_si512());
     const __m512i k = _mm512_mask_add_epi32(i, up, i, _mm512_set1_epi32(1));

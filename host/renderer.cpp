@@ -405,8 +405,8 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   Stopwatch clock;
   const size_t n = rays.size();
   const bool spawn = !settings_.primary_only && depth < settings_.max_depth;
-  // Fixed slots per ray (one shadow ray per light, reflection + refraction) keep the
-  // parallel loop free of shared appends; compacted afterwards in ray order.
+  // Each chunk writes its own outputs (Spawned), which keeps the parallel loop free of
+  // shared appends; they are concatenated afterwards in chunk order, the shading order.
   Generation& g = generations_[depth];
   g.radiance.resize(n);
   std::vector<glm::vec3>& local = g.radiance;

@@ -26,7 +26,6 @@ struct TraversalLists {
   // Per-chunk scratch, kept between batches so nothing is allocated per frame.
   std::vector<std::vector<ListEntry>> scratch;
   std::vector<std::vector<ListEntry>> packet_scratch;  // per thread: 16 rays' lists
-
 };
 
 // Rays per chunk of the list computation (a unit of dynamic scheduling).
