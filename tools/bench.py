@@ -169,8 +169,11 @@ def run_median(args, frames, runs):
     busy minute on a shared machine moves a single process by a third)."""
     import statistics
     results = [run(args, frames) for _ in range(runs)]
+    for r in results:
+        r["fps"] = 1000.0 / r["frame_ms"]
     s = dict(results[0])
-    for key in ("frame_ms", "lists_ms", "kernel_ms", "reduce_ms", "shade_ms", "mrays_per_s"):
+    for key in ("frame_ms", "fps", "lists_ms", "kernel_ms", "reduce_ms", "shade_ms", "build_ms",
+                "mrays_per_s"):
         s[key] = statistics.median(r[key] for r in results)
     return s
 
@@ -223,22 +226,15 @@ TARGETS = [
 
 
 def bench_targets(frames):
-    import statistics
     rows = []
     for label, key, args in TARGETS:
         for variant, extra in [("gridrt", []), ("gridrt --pe-interrupt", ["--pe-interrupt"]),
                                ("dda", ["--accel", "dda"])]:
-            runs = [run(args + extra, frames) for _ in range(TARGET_RUNS)]
-            for s in runs:
-                s["fps"] = 1000.0 / s["frame_ms"]
-            value = statistics.median(s[key] for s in runs)
-            frame = statistics.median(s["frame_ms"] for s in runs)
-            r = row(f"{label} [{variant}]", runs[0], target=label, variant=variant, value=value)
-            r["frame_ms"] = frame
-            for phase in ("lists_ms", "kernel_ms", "reduce_ms", "shade_ms", "build_ms"):
-                r[phase] = statistics.median(s[phase] for s in runs)
-            rows.append(r)
-            print(f"target {label:52s} {variant:22s}: {value:8.2f}  (frame {frame:.2f} ms)", flush=True)
+            s = run_median(args + extra, frames, TARGET_RUNS)
+            value = s[key]
+            rows.append(row(f"{label} [{variant}]", s, target=label, variant=variant, value=value))
+            print(f"target {label:52s} {variant:22s}: {value:8.2f}  (frame {s['frame_ms']:.2f} ms)",
+                  flush=True)
     return rows
 
 
