@@ -239,7 +239,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     planes[GR_PLANE_TMIN * stride + b] = ray.tmin;
     planes[GR_PLANE_TMAX * stride + b] = ray.tmax;
   };
-  int differing = check_cover ? 0 : 1, uncovered = 0;
+  int differing = 0, uncovered = 0;
 #pragma omp parallel for schedule(static) reduction(+ : differing, uncovered)
   for (long long b = 0; b < (long long)stride; ++b) {
     const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
@@ -254,7 +254,8 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       writeStarts(b, ray);
     }
   }
-  const bool common_origin = differing == 0;
+  // Shadow rays (no frame) never share an origin: their starts are written above.
+  const bool common_origin = check_cover && differing == 0;
   if (!common_origin && check_cover) {
 #pragma omp parallel for schedule(static)
     for (long long b = 0; b < (long long)stride; ++b) {
