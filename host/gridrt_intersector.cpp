@@ -69,9 +69,12 @@ void GridRtIntersector::runPes(const std::vector<GrRay>& rays, size_t slots, Hit
 }
 
 GridRtIntersector::~GridRtIntersector() {
-  if (!slot_hits_ && !results_map_) return;
+  if (!slot_hits_ && !results_map_ && !planes_map_) return;
   try {
-    rt_.runWithHostThreadsAsleep([&] { enqueueUnmaps(); });
+    rt_.runWithHostThreadsAsleep([&] {
+      enqueueUnmaps();
+      enqueuePlanesUnmap();
+    });
   } catch (...) {
     // The context goes with the runtime anyway.
   }
@@ -84,6 +87,11 @@ void GridRtIntersector::enqueueUnmaps() {
     rt_.queue().enqueueUnmapMemObject(results_.get(), const_cast<float*>(results_map_));
   slot_hits_ = nullptr;
   results_map_ = nullptr;
+}
+
+void GridRtIntersector::enqueuePlanesUnmap() {
+  if (planes_map_) rt_.queue().enqueueUnmapMemObject(planes_.get(), planes_map_);
+  planes_map_ = nullptr;
 }
 
 void GridRtIntersector::finishBatch(const std::vector<int>& pairs_per_pe, size_t rays,
@@ -216,13 +224,18 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   // directions always (a zero direction marks padding); origins and intervals only when
   // the rays do not all share those of the first ray (camera rays do). Rays without a
   // culling frame (shadow rays: each from its own hit point) get all planes in one pass.
-  float* planes = nullptr;
-  rt_.runWithHostThreadsAsleep([&] {
-    enqueueUnmaps();
-    planes_.reserve(rt_, GR_PLANES * stride);
-    planes = mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
-                              GR_PLANES * stride);
-  });
+  // The previous bundle batch left the buffer mapped for this one: a map of its own
+  // would cost a wait on the device.
+  float* planes = planes_map_;
+  if (!planes || planes_.capacity() < GR_PLANES * stride) {
+    rt_.runWithHostThreadsAsleep([&] {
+      enqueueUnmaps();
+      enqueuePlanesUnmap();
+      planes_.reserve(rt_, GR_PLANES * stride);
+      planes = planes_map_ = mapBuffer<float>(rt_, planes_.get(),
+                                              CL_MAP_WRITE_INVALIDATE_REGION, planes_.capacity());
+    });
+  }
   const GrRay common = n ? rays[0] : GrRay{};
   auto sameStart = [&](const GrRay& r) {
     return r.ox == common.ox && r.oy == common.oy && r.oz == common.oz &&
@@ -268,7 +281,8 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   const float *results = nullptr, *out_t = nullptr, *out_u = nullptr, *out_v = nullptr;
   const int* out_prim = nullptr;
   rt_.runWithHostThreadsAsleep([&] {
-    rt_.queue().enqueueUnmapMemObject(planes_.get(), planes);
+    enqueueUnmaps();
+    enqueuePlanesUnmap();
     if (bundles.tasks.empty()) return;
     bundle_tasks_.upload(rt_, bundles.tasks);
     // t, prim, u, v per lane, then the packets' masks (4 ints each): one buffer.
@@ -302,6 +316,9 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
                                      cl::NDRange(bundles.tasks.size() * kPeLocalSize),
                                      cl::NDRange(kPeLocalSize));
     results = results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
+    // Mapped again for the next bundle batch once the kernel has read it.
+    planes_map_ = mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
+                                   planes_.capacity());
   });
   if (results) {
     out_t = results;

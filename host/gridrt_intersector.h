@@ -77,8 +77,13 @@ class GridRtIntersector : public Intersector {
   // wait of its own); null when not mapped.
   const GrHit* slot_hits_ = nullptr;  // list path
   const float* results_map_ = nullptr;  // bundle path
-  // Enqueues the unmaps of what is mapped (inside ClRuntime::runWithHostThreadsAsleep).
+  // The bundle planes (planes_, all its capacity), mapped for writing at the end of each
+  // bundle batch for the next one; null when not mapped.
+  float* planes_map_ = nullptr;
+  // Enqueue the unmaps of phase 1's results and of the planes (inside
+  // ClRuntime::runWithHostThreadsAsleep).
   void enqueueUnmaps();
+  void enqueuePlanesUnmap();
   std::vector<uint64_t> rays_per_pe_, tests_per_pe_;
   uint64_t max_list_length_ = 0;
   bool list_length_known_ = true;
