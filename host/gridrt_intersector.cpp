@@ -253,19 +253,22 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     planes[GR_PLANE_TMAX * stride + b] = ray.tmax;
   };
   int differing = 0, uncovered = 0;
-#pragma omp parallel for schedule(static) reduction(+ : differing, uncovered)
+  if (check_cover) {
+    // In ray order (sequential reads; the bundle order holds every ray once, and padding).
+#pragma omp parallel for simd schedule(static) reduction(+ : differing, uncovered)
+    for (long long r = 0; r < (long long)n; ++r) {
+      differing += !sameStart(rays[r]);
+      uncovered += !cullFrameCovers(frame, rays[r]);
+    }
+  }
+#pragma omp parallel for schedule(static)
   for (long long b = 0; b < (long long)stride; ++b) {
     const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
-    const GrRay ray = r >= 0 ? rays[r] : common;
+    const GrRay& ray = r >= 0 ? rays[r] : common;
     planes[GR_PLANE_DX * stride + b] = r >= 0 ? ray.dx : 0.0f;
     planes[GR_PLANE_DY * stride + b] = r >= 0 ? ray.dy : 0.0f;
     planes[GR_PLANE_DZ * stride + b] = r >= 0 ? ray.dz : 0.0f;
-    if (check_cover) {
-      differing += !sameStart(ray);
-      uncovered += r >= 0 && !cullFrameCovers(frame, ray);
-    } else {
-      writeStarts(b, ray);
-    }
+    if (!check_cover) writeStarts(b, ray);
   }
   // Shadow rays (no frame) never share an origin: their starts are written above.
   const bool common_origin = check_cover && differing == 0;
