@@ -30,6 +30,8 @@ class CameraRayGenerator {
   // The centre rays of pixels [i0, i1) of row j into out[0 .. i1 - i0): the same rays as
   // operator()(i, j, 0.5, 0.5), bit for bit, written so that the compiler vectorises them.
   void centreRow(int j, int i0, int i1, GrRay* out) const;
+  // True for a pinhole camera: every ray starts at its eye, over [0, inf).
+  bool pinhole() const { return !camera_.orthographic; }
 
  private:
   const Camera& camera_;

@@ -209,10 +209,64 @@ GrCullFrame GridRtIntersector::prepareCulling(bool allowed, const GrCullFrame& f
   return frame;
 }
 
+void GridRtIntersector::generateAndIntersectPrimary(const PinholeView& view,
+                                                    const CameraRayGenerator& camera,
+                                                    std::vector<GrRay>& rays,
+                                                    std::vector<GrHit>& hits,
+                                                    RayDiagnostics* diagnostics) {
+  // Rays of a camera without one eye: made first, then traced as any batch of them.
+  if (!camera.pinhole()) {
+    Intersector::generateAndIntersectPrimary(view, camera, rays, hits, diagnostics);
+    return;
+  }
+  Stopwatch clock;
+  bundleCameraRays(grid_, view, camera_bundles_, interrupt_, camera_scratch_);
+  counters_.lists_ms += clock.ms();
+  const GrCullFrame frame = cullFrameOf(view);
+  const PixelWindow& w = view.window;
+  const int ww = w.width(), wh = w.height();
+  rays.resize(size_t(ww) * wh);
+  // The camera bundles' layout (camera_bundles.h): 4x4-pixel tiles, row by row, so tile
+  // row ty holds the slots [ty * tiles_x * 16, (ty + 1) * tiles_x * 16) and the pixels of
+  // rows 4 ty .. 4 ty + 3 of the window.
+  const int tiles_x = (ww + kTileSize - 1) / kTileSize, tiles_y = (wh + kTileSize - 1) / kTileSize;
+  const size_t band_slots = size_t(tiles_x) * kTileSize * kTileSize;
+  PlaneFill fill;
+  fill.common = camera(w.x0, w.y0, 0.5f, 0.5f);
+  fill.write = [&](float* planes, size_t stride, int& differing, int& uncovered) {
+    const std::vector<int>& ray_of = camera_bundles_.ray_of;
+    float* dx = planes + GR_PLANE_DX * stride;
+    float* dy = planes + GR_PLANE_DY * stride;
+    float* dz = planes + GR_PLANE_DZ * stride;
+    int u = 0;
+#pragma omp parallel for schedule(static) reduction(+ : u)
+    for (int ty = 0; ty < tiles_y; ++ty) {
+      const int y0 = ty * kTileSize, y1 = std::min(wh, y0 + kTileSize);
+      for (int y = y0; y < y1; ++y)
+        camera.centreRow(w.y0 + y, w.x0, w.x1, rays.data() + size_t(y) * ww);
+      const size_t b0 = ty * band_slots, b1 = b0 + band_slots;
+      for (size_t b = b0; b < b1; ++b) {
+        const int r = ray_of[b];
+        dx[b] = r >= 0 ? rays[r].dx : 0.0f;
+        dy[b] = r >= 0 ? rays[r].dy : 0.0f;
+        dz[b] = r >= 0 ? rays[r].dz : 0.0f;
+      }
+      // The frame's cover, from the planes (padding, a zero direction, does not count).
+      for (size_t b = b0; b < b1; ++b)
+        u += ray_of[b] >= 0 && !cullFrameCovers(frame, GrRay{0, 0, 0, 0, dx[b], dy[b], dz[b], 0});
+    }
+    for (size_t b = size_t(tiles_y) * band_slots; b < stride; ++b) dx[b] = dy[b] = dz[b] = 0.0f;
+    // A pinhole camera's rays all start at its eye, over [0, inf) (CameraRayGenerator::pinhole).
+    differing = 0;
+    uncovered = u;
+  };
+  intersectBundles(rays, camera_bundles_, HitMode::Closest, hits, diagnostics, &frame, &fill);
+}
+
 void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const RayBundles& bundles,
                                          HitMode mode, std::vector<GrHit>& hits,
                                          RayDiagnostics* diagnostics,
-                                         const GrCullFrame* cull_frame) {
+                                         const GrCullFrame* cull_frame, const PlaneFill* fill) {
   const size_t n = rays.size();
   hits.resize(n);
   const size_t slots = bundles.ray_of.size();
@@ -236,7 +290,9 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
                                               CL_MAP_WRITE_INVALIDATE_REGION, planes_.capacity());
     });
   }
-  const GrRay common = n ? rays[0] : GrRay{};
+  int differing = 0, uncovered = 0;
+  if (fill) fill->write(planes, stride, differing, uncovered);
+  const GrRay common = fill ? fill->common : n ? rays[0] : GrRay{};
   auto sameStart = [&](const GrRay& r) {
     return r.ox == common.ox && r.oy == common.oy && r.oz == common.oz &&
            r.tmin == common.tmin && r.tmax == common.tmax;
@@ -252,8 +308,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     planes[GR_PLANE_TMIN * stride + b] = ray.tmin;
     planes[GR_PLANE_TMAX * stride + b] = ray.tmax;
   };
-  int differing = 0, uncovered = 0;
-  if (check_cover) {
+  if (check_cover && !fill) {
     // In ray order (sequential reads; the bundle order holds every ray once, and padding).
 #pragma omp parallel for simd schedule(static) reduction(+ : differing, uncovered)
     for (long long r = 0; r < (long long)n; ++r) {
@@ -261,8 +316,8 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       uncovered += !cullFrameCovers(frame, rays[r]);
     }
   }
-#pragma omp parallel for schedule(static)
-  for (long long b = 0; b < (long long)stride; ++b) {
+#pragma omp parallel for schedule(static) if (!fill)
+  for (long long b = 0; b < (fill ? 0 : (long long)stride); ++b) {
     const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
     const GrRay& ray = r >= 0 ? rays[r] : common;
     planes[GR_PLANE_DX * stride + b] = r >= 0 ? ray.dx : 0.0f;
@@ -310,7 +365,10 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     k.setArg(arg++, first_hit_key_.get());
     k.setArg(arg++, mode == HitMode::AnyHit ? 1 : 0);
     k.setArg(arg++, interrupt_ ? 1 : 0);
-    k.setArg(arg++, prepareCulling(check_cover && uncovered == 0 && common_origin, frame, common));
+    const GrCullFrame culling =
+        prepareCulling(check_cover && uncovered == 0 && common_origin, frame, common);
+    packet_culling_used_ = culling.enabled != 0.0f;
+    k.setArg(arg++, culling);
     k.setArg(arg++, cull_planes_.reserve(rt_, 1));
     k.setArg(arg++, int(cull_cache_.stride()));
     k.setArg(arg++, seg_planes_.get());

@@ -2,6 +2,8 @@
 // PE task on the device (phase 1: one in-voxel hit per ray and PE), and the phase-2
 // reduction on the host (the first PE in a ray's list holding a hit wins).
 #pragma once
+#include <functional>
+
 #include "camera_bundles.h"
 #include "cl_runtime.h"
 #include "device_buffer.h"
@@ -49,6 +51,11 @@ class GridRtIntersector : public Intersector {
   // keeps the same pairs, so the same hits.
   void intersectPrimary(const PinholeView& view, const std::vector<GrRay>& rays,
                         std::vector<GrHit>& hits, RayDiagnostics* diagnostics) override;
+  // The same, with the rays made a band of four rows at a time and written to the bundle
+  // planes while the band is still in cache.
+  void generateAndIntersectPrimary(const PinholeView& view, const CameraRayGenerator& camera,
+                                   std::vector<GrRay>& rays, std::vector<GrHit>& hits,
+                                   RayDiagnostics* diagnostics) override;
 
   // Shadow rays as light bundles (light_bundles.h): PEs receive runs of rays through
   // their voxels' outlines as seen from the point.
@@ -56,6 +63,8 @@ class GridRtIntersector : public Intersector {
                              HitMode mode, std::vector<GrHit>& hits) override;
   // Tests send every light batch through the bundles, whatever its size and shape.
   void forceLightBundles() { force_light_bundles_ = true; }
+  // Whether the last bundle batch ran with packet culling (for tests).
+  bool packetCullingUsed() const { return packet_culling_used_; }
 
   // Rays and tests each PE received, summed over all batches (load balance).
   const std::vector<uint64_t>& raysPerPe() const { return rays_per_pe_; }
@@ -99,9 +108,17 @@ class GridRtIntersector : public Intersector {
   // the packets' masks (the first PE of a ray's list with a hit holds its smallest t).
   // cull_frame (may be null): packet culling (packet_culling.h) on that frame, used when
   // the rays share an origin and the frame covers them all.
+  // fill (may be null) writes the direction planes itself (and makes `rays` first, as it
+  // goes), counting the rays that do not start where `common` does and those the culling
+  // frame does not cover; by default they are gathered from `rays`.
+  struct PlaneFill {
+    GrRay common;  // the start every ray should share
+    std::function<void(float* planes, size_t stride, int& differing, int& uncovered)> write;
+  };
   void intersectBundles(const std::vector<GrRay>& rays, const RayBundles& bundles,
                         HitMode mode, std::vector<GrHit>& hits, RayDiagnostics* diagnostics,
-                        const GrCullFrame* cull_frame = nullptr);
+                        const GrCullFrame* cull_frame = nullptr,
+                        const PlaneFill* fill = nullptr);
   // The frame the kernel gets for this batch (enabled 0 unless culling is allowed: common
   // origin, every ray covered by the frame); uploads the PE triangles' boxes when they
   // changed.
@@ -109,6 +126,7 @@ class GridRtIntersector : public Intersector {
   RayBundles camera_bundles_;
   CameraBundleScratch camera_scratch_;
   bool force_light_bundles_ = false;
+  bool packet_culling_used_ = false;
   RayBundles light_bundles_;
   LightBundleScratch light_scratch_;
   std::vector<std::vector<int>> thread_pe_pairs_;  // per thread, pairs per PE

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "camera_rays.h"
 #include "gridrt_types.h"
 #include "pinhole_view.h"
 
@@ -54,6 +55,24 @@ class Intersector {
                                 std::vector<GrHit>& hits, RayDiagnostics* diagnostics) {
     (void)view;
     intersect(rays, HitMode::Closest, hits, diagnostics);
+  }
+  // The same for rays it makes itself: the centre rays of view.window from `camera` into
+  // `rays` (resized; ray k = pixel k, row-major), then their closest hits (through
+  // intersectPrimary for a pinhole camera). Intersectors that can write the rays where
+  // they need them while they make them override it.
+  virtual void generateAndIntersectPrimary(const PinholeView& view,
+                                           const CameraRayGenerator& camera,
+                                           std::vector<GrRay>& rays, std::vector<GrHit>& hits,
+                                           RayDiagnostics* diagnostics) {
+    const PixelWindow& w = view.window;
+    rays.resize(size_t(w.width()) * w.height());
+#pragma omp parallel for schedule(static)
+    for (int y = w.y0; y < w.y1; ++y)
+      camera.centreRow(y, w.x0, w.x1, rays.data() + size_t(y - w.y0) * w.width());
+    if (camera.pinhole())
+      intersectPrimary(view, rays, hits, diagnostics);
+    else
+      intersect(rays, HitMode::Closest, hits, diagnostics);
   }
   // Rays that all end at `point` (shadow rays towards a point or spot light: origin, unit
   // direction to the point, tmax the distance). Intersectors that can exploit the common

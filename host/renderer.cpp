@@ -170,15 +170,24 @@ void Renderer::traceShadows(double& ms) {
   }
 }
 
+// Bands of whole rows keep each batch a window of the image, as PinholeView requires.
+static int primaryBandRows(const PixelWindow& window) {
+  return std::max(1, int(kMaxBatchRays / size_t(window.width())));
+}
+
+bool Renderer::primaryRaysMadeByIntersector(const PixelWindow& window) const {
+  return primaryBandRows(window) >= window.height();
+}
+
 void Renderer::tracePrimary(const PixelWindow& window, std::vector<GrHit>& hits,
                             RayDiagnostics* diagnostics, double& ms) {
   Stopwatch clock;
-  // Bands of whole rows keep each batch a window of the image, as PinholeView requires.
   const int w = window.width();
-  const int rows = std::max(1, int(kMaxBatchRays / size_t(w)));
-  if (rows >= window.height()) {  // one batch: no copies
+  const int rows = primaryBandRows(window);
+  if (primaryRaysMadeByIntersector(window)) {  // one batch: no copies
     PinholeView view = PinholeView::of(camera_, settings_.width, settings_.height, window);
-    intersector_.intersectPrimary(view, primary_rays_, hits, diagnostics);
+    const CameraRayGenerator camera_rays(camera_, settings_.width, settings_.height);
+    intersector_.generateAndIntersectPrimary(view, camera_rays, primary_rays_, hits, diagnostics);
     ms += clock.ms();
     return;
   }
@@ -261,7 +270,13 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   primary_rays_.resize(rendered * spp);
   const CameraRayGenerator camera_rays(camera_, w, h);
   const bool centre_only = spp == 1 && first_sample == 0;
-  if (centre_only && window) {  // the window's pixel centres, row by row
+  // The first generation of a window's pixel centres goes through tracePrimary (below),
+  // whose intersector makes the rays itself when they fit one batch.
+  const bool traced_primary = window && centre_only && !camera_.orthographic;
+  const bool made_when_traced = traced_primary && primaryRaysMadeByIntersector(*window);
+  if (made_when_traced) {
+    // tracePrimary's intersector makes them
+  } else if (centre_only && window) {  // the window's pixel centres, row by row
     const int ww = window->width();
 #pragma omp parallel for schedule(static)
     for (int y = window->y0; y < window->y1; ++y)
@@ -318,7 +333,7 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
     }
     RayDiagnostics* diag = first && aov_pass && settings_.want_diagnostics ? &diagnostics : nullptr;
     std::vector<GrHit>& hits = generations_[depth].hits;
-    if (first && aov_pass && centre_only && !camera_.orthographic)
+    if (first && traced_primary)
       tracePrimary(*window, hits, diag, frame.times.intersect_ms);
     else
       traceBatched(*rays, HitMode::Closest, hits, diag, frame.times.intersect_ms);

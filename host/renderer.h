@@ -107,9 +107,12 @@ class Renderer {
                   const PixelWindow* window, const std::function<void(int, int)>& progress);
   bool worthTracing(const glm::vec3& weight) const;
   // Primary rays (one per pixel of `window`, in primary_rays_) through
-  // Intersector::intersectPrimary, their hits into `hits`.
+  // Intersector::intersectPrimary, their hits into `hits`. When the window fits one batch
+  // the intersector makes the rays itself (Intersector::generateAndIntersectPrimary), so
+  // renderPass leaves primary_rays_ to it (primaryRaysMadeByIntersector).
   void tracePrimary(const PixelWindow& window, std::vector<GrHit>& hits,
                     RayDiagnostics* diagnostics, double& ms);
+  bool primaryRaysMadeByIntersector(const PixelWindow& window) const;
   // Shades one generation (rays, their paths and generations_[depth].hits): leaves what
   // each ray adds to its pixel in generations_[depth].radiance, appends its shadow rays
   // to shadow_rays_ / shadows_ from `shadow_offset` on (returns how many) and leaves the
