@@ -435,16 +435,19 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   Spawned& out = spawned_[chunk];
   out.shadow_count = 0;
   out.ray_count = 0;
-  const size_t chunk_end = std::min(n, size_t(chunk + 1) * kShadeChunkRays);
-  for (size_t j = size_t(chunk) * kShadeChunkRays; j < chunk_end; ++j) {
-    // The primary generation in its shading order: sample j % spp of the pixel at
-    // position j / spp of the order.
-    const size_t i = paths || !primary.order
-                         ? j
-                         : size_t(primary.order[j / primary.spp]) * primary.spp + j % primary.spp;
+  const size_t chunk_begin = size_t(chunk) * kShadeChunkRays;
+  const size_t chunk_end = std::min(n, chunk_begin + kShadeChunkRays);
+  // The primary generation in its shading order: sample `sample` of the pixel at
+  // `position` of the order (j / spp and j % spp, counted along instead of divided).
+  const size_t spp = size_t(primary.spp);
+  size_t position = chunk_begin / spp, sample = chunk_begin % spp;
+  for (size_t j = chunk_begin; j < chunk_end;
+       ++j, sample = sample + 1 == spp ? 0 : sample + 1, position += sample == 0) {
+    const size_t pixel_index = paths ? 0 : primary.order ? size_t(primary.order[position]) : position;
+    const size_t i = paths || !primary.order ? j : pixel_index * spp + sample;
     const GrRay& ray = rays[i];
     const PathRay path = paths ? (*paths)[i]
-                               : PathRay{window_pixels_[i / primary.spp], glm::vec3(primary.weight),
+                               : PathRay{window_pixels_[pixel_index], glm::vec3(primary.weight),
                                          RayKind::Primary};
     const GrHit& hit = g.hits[i];
     glm::vec3 d(ray.dx, ray.dy, ray.dz);
