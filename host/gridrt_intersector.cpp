@@ -414,11 +414,12 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     const size_t chunk = (slots / kBundleLanes + count - 1) / count * kBundleLanes;
     const long long lo = (long long)std::min(slots, size_t(me) * chunk);
     const long long hi = (long long)std::min(slots, size_t(lo) + chunk);
+    // Every ray a miss to begin with, written in ray order (in bundle order it would be a
+    // scatter); the loop's barrier comes before the hits below.
+#pragma omp for schedule(static)
+    for (long long r = 0; r < (long long)n; ++r)
+      hits[r] = GrHit{common_origin ? common.tmax : rays[r].tmax, -1, 0.0f, 0.0f};
     // Bundle order maps to distinct rays, so the threads write disjoint hits.
-    for (long long b = lo; b < hi; ++b) {
-      const int r = bundles.ray_of[b];
-      if (r >= 0) hits[r] = GrHit{common_origin ? common.tmax : rays[r].tmax, -1, 0.0f, 0.0f};
-    }
     for (const GrBundleTask& task : tasks) {
       const long long first = std::max<long long>(task.first_ray, lo);
       const long long last = std::min<long long>(task.first_ray + task.ray_count, hi);
