@@ -13,8 +13,20 @@
 namespace gridrt {
 
 namespace {
+
 constexpr int kSkipped = -2;  // prim of a slot the interrupt skipped (kernels/gridrt_pe.cl)
+
+// Maps `count` elements of a device buffer into host memory (no copy on a CPU device).
+// Non-blocking: the pointer is usable once the enclosing runWithHostThreadsAsleep returns.
+template <typename T>
+T* mapBuffer(ClRuntime& rt, cl::Buffer& buffer, cl_map_flags flags, size_t count) {
+  return static_cast<T*>(rt.queue().enqueueMapBuffer(buffer, CL_FALSE, flags, 0,
+                                                     std::max<size_t>(count, 1) * sizeof(T)));
 }
+
+int popcount(int bits) { return __builtin_popcount(unsigned(bits)); }
+
+}  // namespace
 
 GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid, bool interrupt,
                                      const KernelOptions& kernel_options)
@@ -41,9 +53,9 @@ void GridRtIntersector::runPes(const std::vector<GrRay>& rays, size_t slots, Hit
   const std::vector<GrPeTask>& tasks = bins_.tasks;
   rt_.runWithHostThreadsAsleep([&] {
     enqueueUnmaps();
+    enqueueEntriesUnmap();
     if (tasks.empty()) return;
     rays_.upload(rt_, rays);
-    entries_.upload(rt_, bins_.entries);
     tasks_.upload(rt_, tasks);
     slot_hits_dev_.reserve(rt_, slots);
     first_hit_key_.reserve(rt_, n);
@@ -65,15 +77,19 @@ void GridRtIntersector::runPes(const std::vector<GrRay>& rays, size_t slots, Hit
                                      cl::NDRange(kPeLocalSize));
     slot_hits_ = static_cast<const GrHit*>(rt_.queue().enqueueMapBuffer(
         slot_hits_dev_.get(), CL_FALSE, CL_MAP_READ, 0, slots * sizeof(GrHit)));
+    // Mapped again for the next batch's pairs once the kernel has read them.
+    entries_map_ = mapBuffer<GrPeEntry>(rt_, entries_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
+                                        entries_.capacity());
   });
 }
 
 GridRtIntersector::~GridRtIntersector() {
-  if (!slot_hits_ && !results_map_ && !planes_map_) return;
+  if (!slot_hits_ && !results_map_ && !planes_map_ && !entries_map_) return;
   try {
     rt_.runWithHostThreadsAsleep([&] {
       enqueueUnmaps();
       enqueuePlanesUnmap();
+      enqueueEntriesUnmap();
     });
   } catch (...) {
     // The context goes with the runtime anyway.
@@ -87,6 +103,11 @@ void GridRtIntersector::enqueueUnmaps() {
     rt_.queue().enqueueUnmapMemObject(results_.get(), const_cast<float*>(results_map_));
   slot_hits_ = nullptr;
   results_map_ = nullptr;
+}
+
+void GridRtIntersector::enqueueEntriesUnmap() {
+  if (entries_map_) rt_.queue().enqueueUnmapMemObject(entries_.get(), entries_map_);
+  entries_map_ = nullptr;
 }
 
 void GridRtIntersector::enqueuePlanesUnmap() {
@@ -112,7 +133,18 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   hits.resize(n);
   Stopwatch clock;
   computeTraversalLists(grid_, rays.data(), n, lists_);
-  binByPe(lists_, rays.data(), grid_.peCount(), kPeTaskRays, bins_);
+  // The pairs go straight into the device buffer, left mapped by the previous batch.
+  const size_t pairs = lists_.entries.size();
+  if (!entries_map_ || entries_.capacity() < pairs) {
+    rt_.runWithHostThreadsAsleep([&] {
+      enqueueUnmaps();
+      enqueueEntriesUnmap();
+      entries_.reserve(rt_, pairs);
+      entries_map_ = mapBuffer<GrPeEntry>(rt_, entries_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
+                                          entries_.capacity());
+    });
+  }
+  binByPe(lists_, rays.data(), grid_.peCount(), kPeTaskRays, bins_, entries_map_);
   counters_.lists_ms += clock.ms();
 
   clock.restart();
@@ -185,19 +217,6 @@ void GridRtIntersector::intersectTowardsPoint(const glm::vec3& point,
   intersectBundles(rays, light_bundles_, mode, hits, nullptr);
 }
 
-namespace {
-
-// Maps `count` elements of a device buffer into host memory (no copy on a CPU device).
-// Non-blocking: the pointer is usable once the enclosing runWithHostThreadsAsleep returns.
-template <typename T>
-T* mapBuffer(ClRuntime& rt, cl::Buffer& buffer, cl_map_flags flags, size_t count) {
-  return static_cast<T*>(rt.queue().enqueueMapBuffer(buffer, CL_FALSE, flags, 0,
-                                                     std::max<size_t>(count, 1) * sizeof(T)));
-}
-
-int popcount(int bits) { return __builtin_popcount(unsigned(bits)); }
-
-}  // namespace
 
 GrCullFrame GridRtIntersector::prepareCulling(bool allowed, const GrCullFrame& frame,
                                               const GrRay& common) {

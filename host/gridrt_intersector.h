@@ -89,10 +89,13 @@ class GridRtIntersector : public Intersector {
   // The bundle planes (planes_, all its capacity), mapped for writing at the end of each
   // bundle batch for the next one; null when not mapped.
   float* planes_map_ = nullptr;
+  // The same for the list path's pairs (entries_): binByPe writes them there.
+  GrPeEntry* entries_map_ = nullptr;
   // Enqueue the unmaps of phase 1's results and of the planes (inside
   // ClRuntime::runWithHostThreadsAsleep).
   void enqueueUnmaps();
   void enqueuePlanesUnmap();
+  void enqueueEntriesUnmap();
   std::vector<uint64_t> rays_per_pe_, tests_per_pe_;
   uint64_t max_list_length_ = 0;
   bool list_length_known_ = true;

@@ -18,12 +18,15 @@ int octantOf(const GrRay& ray) {
 }  // namespace
 
 void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int task_rays,
-             PeBins& bins) {
+             PeBins& bins, GrPeEntry* out) {
   const int threads = omp_get_max_threads();
   const size_t ray_count = lists.rayCount();
   const int parts = pe_count * kOctants;
   bins.thread_counts.resize(threads);
-  bins.entries.resize(lists.entries.size());
+  if (!out) {
+    bins.entries.resize(lists.entries.size());
+    out = bins.entries.data();
+  }
 #pragma omp parallel num_threads(threads)
   {
     int t = omp_get_thread_num();
@@ -53,8 +56,7 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
       const int octant = octantOf(rays[r]);
       for (int e = lists.begin[r]; e < lists.begin[r + 1]; ++e) {
         const ListEntry& le = lists.entries[e];
-        bins.entries[counts[le.pe * kOctants + octant]++] =
-            GrPeEntry{int(r), e, le.t_enter, le.t_exit};
+        out[counts[le.pe * kOctants + octant]++] = GrPeEntry{int(r), e, le.t_enter, le.t_exit};
       }
     }
   }

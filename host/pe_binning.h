@@ -13,14 +13,16 @@
 namespace gridrt {
 
 struct PeBins {
-  std::vector<GrPeEntry> entries;  // grouped by PE
+  std::vector<GrPeEntry> entries;  // grouped by PE (unless binByPe was given `out`)
   std::vector<GrPeTask> tasks;
   std::vector<int> pairs_per_pe;   // rays each PE received in the last batch
   std::vector<int> pairs_per_part; // ... per (PE, octant): index pe * 8 + octant
   std::vector<std::vector<int>> thread_counts;  // scratch reused between batches
 };
 
+// The entries go to `out` (room for lists.entries.size()) when given, else to
+// bins.entries (resized).
 void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int task_rays,
-             PeBins& bins);
+             PeBins& bins, GrPeEntry* out = nullptr);
 
 }  // namespace gridrt
