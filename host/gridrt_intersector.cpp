@@ -217,7 +217,6 @@ void GridRtIntersector::intersectTowardsPoint(const glm::vec3& point,
   intersectBundles(rays, light_bundles_, mode, hits, nullptr);
 }
 
-
 GrCullFrame GridRtIntersector::prepareCulling(bool allowed, const GrCullFrame& frame,
                                               const GrRay& common) {
   // Culling needs every hit at t > 0 in front of the origin (packet_culling.h).

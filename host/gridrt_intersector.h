@@ -91,7 +91,7 @@ class GridRtIntersector : public Intersector {
   float* planes_map_ = nullptr;
   // The same for the list path's pairs (entries_): binByPe writes them there.
   GrPeEntry* entries_map_ = nullptr;
-  // Enqueue the unmaps of phase 1's results and of the planes (inside
+  // Enqueue the unmaps of phase 1's results, of the planes and of the pairs (inside
   // ClRuntime::runWithHostThreadsAsleep).
   void enqueueUnmaps();
   void enqueuePlanesUnmap();
@@ -100,8 +100,9 @@ class GridRtIntersector : public Intersector {
   uint64_t max_list_length_ = 0;
   bool list_length_known_ = true;
 
-  // Phase 1: uploads the batch and its binned pairs (bins_) and runs one work-group per
-  // task; slot_hits_ maps one hit (or a miss, or GR_SKIPPED) per entry slot.
+  // Phase 1: uploads the batch (its binned pairs are already in entries_, through
+  // entries_map_) and runs one work-group per task (bins_.tasks); slot_hits_ maps one hit
+  // (or a miss, or GR_SKIPPED) per entry slot.
   void runPes(const std::vector<GrRay>& rays, size_t slots, HitMode mode);
   // The end of a batch, for both paths: adds the batch to the PE load and the counters
   // (phase 1's results stay mapped until the next batch's device commands).
