@@ -70,6 +70,12 @@ void CameraRayGenerator::centreRow(int j, int i0, int i1, GrRay* out) const {
   }
 }
 
+void CameraRayGenerator::centreWindow(const PixelWindow& window, GrRay* out) const {
+#pragma omp parallel for schedule(static)
+  for (int y = window.y0; y < window.y1; ++y)
+    centreRow(y, window.x0, window.x1, out + size_t(y - window.y0) * window.width());
+}
+
 GrRay cameraRay(const Camera& camera, int width, int height, int i, int j, float sx, float sy) {
   return CameraRayGenerator(camera, width, height)(i, j, sx, sy);
 }

@@ -10,6 +10,7 @@
 
 #include "bounds.h"
 #include "gridrt_types.h"
+#include "pixel_window.h"
 #include "scene.h"
 
 namespace gridrt {
@@ -30,6 +31,9 @@ class CameraRayGenerator {
   // The centre rays of pixels [i0, i1) of row j into out[0 .. i1 - i0): the same rays as
   // operator()(i, j, 0.5, 0.5), bit for bit, written so that the compiler vectorises them.
   void centreRow(int j, int i0, int i1, GrRay* out) const;
+  // The centre rays of every pixel of `window`, row-major, into out[0 .. width * height),
+  // row by row on all cores.
+  void centreWindow(const PixelWindow& window, GrRay* out) const;
   // True for a pinhole camera: every ray starts at its eye, over [0, inf).
   bool pinhole() const { return !camera_.orthographic; }
 

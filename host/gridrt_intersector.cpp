@@ -334,14 +334,16 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       uncovered += !cullFrameCovers(frame, rays[r]);
     }
   }
-#pragma omp parallel for schedule(static) if (!fill)
-  for (long long b = 0; b < (fill ? 0 : (long long)stride); ++b) {
-    const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
-    const GrRay& ray = r >= 0 ? rays[r] : common;
-    planes[GR_PLANE_DX * stride + b] = r >= 0 ? ray.dx : 0.0f;
-    planes[GR_PLANE_DY * stride + b] = r >= 0 ? ray.dy : 0.0f;
-    planes[GR_PLANE_DZ * stride + b] = r >= 0 ? ray.dz : 0.0f;
-    if (!check_cover) writeStarts(b, ray);
+  if (!fill) {
+#pragma omp parallel for schedule(static)
+    for (long long b = 0; b < (long long)stride; ++b) {
+      const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
+      const GrRay& ray = r >= 0 ? rays[r] : common;
+      planes[GR_PLANE_DX * stride + b] = r >= 0 ? ray.dx : 0.0f;
+      planes[GR_PLANE_DY * stride + b] = r >= 0 ? ray.dy : 0.0f;
+      planes[GR_PLANE_DZ * stride + b] = r >= 0 ? ray.dz : 0.0f;
+      if (!check_cover) writeStarts(b, ray);
+    }
   }
   // Shadow rays (no frame) never share an origin: their starts are written above.
   const bool common_origin = check_cover && differing == 0;

@@ -64,11 +64,8 @@ class Intersector {
                                            const CameraRayGenerator& camera,
                                            std::vector<GrRay>& rays, std::vector<GrHit>& hits,
                                            RayDiagnostics* diagnostics) {
-    const PixelWindow& w = view.window;
-    rays.resize(size_t(w.width()) * w.height());
-#pragma omp parallel for schedule(static)
-    for (int y = w.y0; y < w.y1; ++y)
-      camera.centreRow(y, w.x0, w.x1, rays.data() + size_t(y - w.y0) * w.width());
+    rays.resize(size_t(view.window.width()) * view.window.height());
+    camera.centreWindow(view.window, rays.data());
     if (camera.pinhole())
       intersectPrimary(view, rays, hits, diagnostics);
     else

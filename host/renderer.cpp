@@ -170,36 +170,29 @@ void Renderer::traceShadows(double& ms) {
   }
 }
 
-// Bands of whole rows keep each batch a window of the image, as PinholeView requires.
-static int primaryBandRows(const PixelWindow& window) {
-  return std::max(1, int(kMaxBatchRays / size_t(window.width())));
-}
-
-bool Renderer::primaryRaysMadeByIntersector(const PixelWindow& window) const {
-  return primaryBandRows(window) >= window.height();
-}
-
 void Renderer::tracePrimary(const PixelWindow& window, std::vector<GrHit>& hits,
                             RayDiagnostics* diagnostics, double& ms) {
   Stopwatch clock;
+  const CameraRayGenerator camera_rays(camera_, settings_.width, settings_.height);
+  // Bands of whole rows keep each batch a window of the image, as PinholeView requires.
   const int w = window.width();
-  const int rows = primaryBandRows(window);
-  if (primaryRaysMadeByIntersector(window)) {  // one batch: no copies
+  const int rows = std::max(1, int(kMaxBatchRays / size_t(w)));
+  if (rows >= window.height()) {  // one batch: no copies
     PinholeView view = PinholeView::of(camera_, settings_.width, settings_.height, window);
-    const CameraRayGenerator camera_rays(camera_, settings_.width, settings_.height);
     intersector_.generateAndIntersectPrimary(view, camera_rays, primary_rays_, hits, diagnostics);
     ms += clock.ms();
     return;
   }
-  hits.resize(primary_rays_.size());
+  hits.resize(primary_rays_.size());  // renderPass sized primary_rays_ for the window
   if (diagnostics) *diagnostics = RayDiagnostics{};
   RayDiagnostics part;
   for (int y = window.y0; y < window.y1; y += rows) {
     PixelWindow band{window.x0, y, window.x1, std::min(window.y1, y + rows)};
-    size_t first = size_t(y - window.y0) * w, count = size_t(band.height()) * w;
-    batch_rays_.assign(primary_rays_.begin() + first, primary_rays_.begin() + first + count);
+    size_t first = size_t(y - window.y0) * w;
     PinholeView view = PinholeView::of(camera_, settings_.width, settings_.height, band);
-    intersector_.intersectPrimary(view, batch_rays_, batch_hits_, diagnostics ? &part : nullptr);
+    intersector_.generateAndIntersectPrimary(view, camera_rays, batch_rays_, batch_hits_,
+                                             diagnostics ? &part : nullptr);
+    std::copy(batch_rays_.begin(), batch_rays_.end(), primary_rays_.begin() + first);
     std::copy(batch_hits_.begin(), batch_hits_.end(), hits.begin() + first);
     if (diagnostics) appendDiagnostics(*diagnostics, part);
   }
@@ -270,18 +263,13 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   primary_rays_.resize(rendered * spp);
   const CameraRayGenerator camera_rays(camera_, w, h);
   const bool centre_only = spp == 1 && first_sample == 0;
-  // The first generation of a window's pixel centres goes through tracePrimary (below),
-  // whose intersector makes the rays itself when they fit one batch.
+  // A pinhole camera's pixel centres over a window go through tracePrimary (below), whose
+  // intersector makes them (Intersector::generateAndIntersectPrimary).
   const bool traced_primary = window && centre_only && !camera_.orthographic;
-  const bool made_when_traced = traced_primary && primaryRaysMadeByIntersector(*window);
-  if (made_when_traced) {
-    // tracePrimary's intersector makes them
+  if (traced_primary) {
+    // made in tracePrimary
   } else if (centre_only && window) {  // the window's pixel centres, row by row
-    const int ww = window->width();
-#pragma omp parallel for schedule(static)
-    for (int y = window->y0; y < window->y1; ++y)
-      camera_rays.centreRow(y, window->x0, window->x1,
-                            primary_rays_.data() + size_t(y - window->y0) * ww);
+    camera_rays.centreWindow(*window, primary_rays_.data());
   } else {
 #pragma omp parallel for schedule(static)
   for (long long k = 0; k < (long long)rendered; ++k) {

@@ -106,13 +106,11 @@ class Renderer {
   void renderPass(Frame& frame, int spp, int first_sample, float weight,
                   const PixelWindow* window, const std::function<void(int, int)>& progress);
   bool worthTracing(const glm::vec3& weight) const;
-  // Primary rays (one per pixel of `window`, in primary_rays_) through
-  // Intersector::intersectPrimary, their hits into `hits`. When the window fits one batch
-  // the intersector makes the rays itself (Intersector::generateAndIntersectPrimary), so
-  // renderPass leaves primary_rays_ to it (primaryRaysMadeByIntersector).
+  // The pixel centres of `window` (a pinhole camera) made into primary_rays_ and traced
+  // by Intersector::generateAndIntersectPrimary, in bands of rows that fit a batch; their
+  // hits into `hits`.
   void tracePrimary(const PixelWindow& window, std::vector<GrHit>& hits,
                     RayDiagnostics* diagnostics, double& ms);
-  bool primaryRaysMadeByIntersector(const PixelWindow& window) const;
   // Shades one generation (rays, their paths and generations_[depth].hits): leaves what
   // each ray adds to its pixel in generations_[depth].radiance, appends its shadow rays
   // to shadow_rays_ / shadows_ from `shadow_offset` on (returns how many) and leaves the
