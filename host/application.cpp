@@ -305,6 +305,7 @@ int runApplication(const Options& o) {
   stats["intersector"] = o.accel == AccelKind::Reference ? "double" : o.watertight ? "watertight" : "mt";
   stats["aa"] = o.adaptive_aa ? "adaptive" : "uniform";
   stats["refined_pixels"] = frame.refined_pixels;
+  stats["passes"] = frame.passes;
   stats["frames_timed"] = t.frame_ms.size();
   stats["rays"] = {{"primary", frame.rays.primary},       {"shadow", frame.rays.shadow},
                    {"reflection", frame.rays.reflection}, {"refraction", frame.rays.refraction},

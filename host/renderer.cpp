@@ -174,28 +174,8 @@ void Renderer::tracePrimary(const PixelWindow& window, std::vector<GrHit>& hits,
                             RayDiagnostics* diagnostics, double& ms) {
   Stopwatch clock;
   const CameraRayGenerator camera_rays(camera_, settings_.width, settings_.height);
-  // Bands of whole rows keep each batch a window of the image, as PinholeView requires.
-  const int w = window.width();
-  const int rows = std::max(1, int(kMaxBatchRays / size_t(w)));
-  if (rows >= window.height()) {  // one batch: no copies
-    PinholeView view = PinholeView::of(camera_, settings_.width, settings_.height, window);
-    intersector_.generateAndIntersectPrimary(view, camera_rays, primary_rays_, hits, diagnostics);
-    ms += clock.ms();
-    return;
-  }
-  hits.resize(primary_rays_.size());  // renderPass sized primary_rays_ for the window
-  if (diagnostics) *diagnostics = RayDiagnostics{};
-  RayDiagnostics part;
-  for (int y = window.y0; y < window.y1; y += rows) {
-    PixelWindow band{window.x0, y, window.x1, std::min(window.y1, y + rows)};
-    size_t first = size_t(y - window.y0) * w;
-    PinholeView view = PinholeView::of(camera_, settings_.width, settings_.height, band);
-    intersector_.generateAndIntersectPrimary(view, camera_rays, batch_rays_, batch_hits_,
-                                             diagnostics ? &part : nullptr);
-    std::copy(batch_rays_.begin(), batch_rays_.end(), primary_rays_.begin() + first);
-    std::copy(batch_hits_.begin(), batch_hits_.end(), hits.begin() + first);
-    if (diagnostics) appendDiagnostics(*diagnostics, part);
-  }
+  PinholeView view = PinholeView::of(camera_, settings_.width, settings_.height, window);
+  intersector_.generateAndIntersectPrimary(view, camera_rays, primary_rays_, hits, diagnostics);
   ms += clock.ms();
 }
 
@@ -206,42 +186,52 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
   frame.rays = RayCounts{};
   frame.times = FrameTimes{};
   frame.refined_pixels = 0;
+  frame.passes = 0;
   radiance_.resize(pixels);
-  PixelWindow win = settings_.crop.whole() ? PixelWindow{0, 0, w, h} : settings_.crop;
-  const int ww = win.width();
-  window_pixels_.resize(size_t(ww) * win.height());
 #pragma omp parallel for schedule(static)
-  for (int y = 0; y < h; ++y) {
+  for (int y = 0; y < h; ++y)
     std::fill(radiance_.begin() + size_t(y) * w, radiance_.begin() + size_t(y + 1) * w, glm::vec3(0.0f));
-    if (y >= win.y0 && y < win.y1)
-      for (int x = win.x0; x < win.x1; ++x)
-        window_pixels_[size_t(y - win.y0) * ww + (x - win.x0)] = y * w + x;
+  if (settings_.want_aovs || settings_.want_diagnostics) {
+    const bool diag = settings_.want_diagnostics;
+    PrimaryAovs& a = frame.aovs;
+    a.depth.assign(pixels, -1.0f);
+    a.primid.assign(pixels, -1.0f);
+    a.normal.assign(pixels * 3, 0.0f);
+    a.tests.assign(diag ? pixels : 0, 0.0f);
+    a.pe.assign(diag ? pixels : 0, -1.0f);
+    a.list_length.assign(diag ? pixels : 0, 0.0f);
   }
+  const PixelWindow win = settings_.crop.whole() ? PixelWindow{0, 0, w, h} : settings_.crop;
 
   if (!settings_.adaptive_aa) {
     const int spp = std::max(1, settings_.spp);
-    renderPass(frame, spp, 0, 1.0f / float(spp), &win, progress);
+    renderInBands(frame, win, spp, 1.0f / float(spp), progress);
   } else {
     // Adaptive supersampling: the pixel centres first; then extra jittered samples only
     // where a pixel differs from a 4-neighbour by more than the threshold.
-    renderPass(frame, 1, 0, 1.0f, &win, progress);
+    renderInBands(frame, win, 1, 1.0f, progress);
     std::vector<int> refine;
     auto differs = [&](int p, int q) {
       glm::vec3 d = glm::abs(radiance_[p] - radiance_[q]);
       return std::max({d.x, d.y, d.z}) > settings_.aa_threshold;
     };
-    for (int p : window_pixels_) {
-      int x = p % w, y = p / w;
-      if ((x > win.x0 && differs(p, p - 1)) || (x + 1 < win.x1 && differs(p, p + 1)) ||
-          (y > win.y0 && differs(p, p - w)) || (y + 1 < win.y1 && differs(p, p + w)))
-        refine.push_back(p);
-    }
+    for (int y = win.y0; y < win.y1; ++y)
+      for (int x = win.x0, p = y * w + x; x < win.x1; ++x, ++p)
+        if ((x > win.x0 && differs(p, p - 1)) || (x + 1 < win.x1 && differs(p, p + 1)) ||
+            (y > win.y0 && differs(p, p - w)) || (y + 1 < win.y1 && differs(p, p + w)))
+          refine.push_back(p);
     const int extra = std::max(1, settings_.aa_samples);
     const float keep = 1.0f / float(extra + 1);
     for (int p : refine) radiance_[p] *= keep;  // the centre becomes one of extra+1 samples
-    window_pixels_ = refine;
     frame.refined_pixels = refine.size();
-    if (!refine.empty()) renderPass(frame, extra, 1, keep, nullptr, progress);
+    // The refined pixels in passes of at most max_pass_rays samples (at least one pixel).
+    const size_t per_pass = std::max<size_t>(1, settings_.max_pass_rays / size_t(extra));
+    const size_t passes = (refine.size() + per_pass - 1) / per_pass;
+    for (size_t k = 0; k < passes; ++k) {
+      const size_t first = k * per_pass, last = std::min(refine.size(), first + per_pass);
+      window_pixels_.assign(refine.begin() + first, refine.begin() + last);
+      renderPass(frame, extra, 1, keep, nullptr, progress);
+    }
   }
 
   frame.film.width = w;
@@ -253,9 +243,34 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
   frame.times.frame_ms = frame_clock.ms();
 }
 
+void Renderer::renderInBands(Frame& frame, const PixelWindow& window, int spp, float weight,
+                             const std::function<void(int, int)>& progress) {
+  const size_t budget = std::min(settings_.max_pass_rays, kMaxBatchRays);
+  const size_t row_rays = size_t(window.width()) * size_t(spp);
+  // As few bands as fit the budget, of about equal height (so their buffers fit each other).
+  const int most_rows = int(std::clamp<size_t>(budget / row_rays, 1, size_t(window.height())));
+  const int bands = (window.height() + most_rows - 1) / most_rows;
+  const int rows = (window.height() + bands - 1) / bands;
+  for (int band = 0; band < bands; ++band) {
+    const PixelWindow part{window.x0, window.y0 + band * rows, window.x1,
+                           std::min(window.y1, window.y0 + (band + 1) * rows)};
+    window_pixels_.resize(size_t(part.width()) * part.height());
+#pragma omp parallel for schedule(static)
+    for (int y = part.y0; y < part.y1; ++y)
+      for (int x = part.x0; x < part.x1; ++x)
+        window_pixels_[size_t(y - part.y0) * part.width() + (x - part.x0)] = y * settings_.width + x;
+    // The passes' stages one after the other on one progress scale.
+    const auto band_progress = [&](int done, int total) {
+      if (progress) progress(band * total + done, bands * total);
+    };
+    renderPass(frame, spp, 0, weight, &part, band_progress);
+  }
+}
+
 void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
                           const PixelWindow* window, const std::function<void(int, int)>& progress) {
   Stopwatch clock;
+  ++frame.passes;
   const int w = settings_.width, h = settings_.height;
   const size_t rendered = window_pixels_.size();
   // Primary rays: pixel-major, spp samples each (the pixel centre for a lone sample 0).
@@ -374,14 +389,7 @@ void Renderer::addPassRadiance(int depths, PrimaryPaths primary) {
 
 void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrHit>& hits,
                                const RayDiagnostics& diagnostics, int spp) {
-  const size_t pixels = size_t(settings_.width) * settings_.height;
   const bool diag = settings_.want_diagnostics;
-  a.depth.assign(pixels, -1.0f);
-  a.primid.assign(pixels, -1.0f);
-  a.normal.assign(pixels * 3, 0.0f);
-  a.tests.assign(diag ? pixels : 0, 0.0f);
-  a.pe.assign(diag ? pixels : 0, -1.0f);
-  a.list_length.assign(diag ? pixels : 0, 0.0f);
   for (size_t k = 0; k < window_pixels_.size(); ++k) {
     size_t p = size_t(window_pixels_[k]), r = k * spp;  // sample 0 of the pixel
     const GrHit& hit = hits[r];

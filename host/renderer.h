@@ -17,6 +17,12 @@
 
 namespace gridrt {
 
+// A frame with more primary rays than this (pixels x samples) is rendered in passes of
+// whole rows that reuse one another's buffers: memory follows the pass, not the image
+// (a 4K frame took 3.4 GB in one pass). A pixel lies in one pass, so the image is the
+// same bit for bit. A row is never split: one row's samples may exceed it.
+constexpr size_t kMaxPassRays = size_t(1) << 18;
+
 struct RenderSettings {
   int width = 640;
   int height = 480;
@@ -37,6 +43,8 @@ struct RenderSettings {
   // Adaptive depth: a reflection/refraction ray whose throughput (max channel) is below
   // this is not traced; 0 traces every ray up to max_depth.
   float min_path_weight = 0.0f;
+  // Primary rays per pass (kMaxPassRays unless a test wants small passes).
+  size_t max_pass_rays = kMaxPassRays;
 };
 
 // Rays traced per kind in one frame.
@@ -65,10 +73,12 @@ struct Frame {
   RayCounts rays;
   FrameTimes times;
   uint64_t refined_pixels = 0;  // pixels that got extra samples (adaptive supersampling)
+  uint64_t passes = 0;          // renderPass calls (bands of rows, then refinement)
 };
 
 // Rays at or beyond this count are traced in several batches, bounding device memory.
 constexpr size_t kMaxBatchRays = size_t(1) << 21;
+static_assert(kMaxPassRays <= kMaxBatchRays, "a pass's camera rays are one batch");
 // Rays per chunk of the shading loop (a unit of dynamic scheduling).
 constexpr size_t kShadeChunkRays = 2048;
 
@@ -102,13 +112,18 @@ class Renderer {
                     RayDiagnostics* diagnostics, double& ms);
   // Traces `spp` primary samples (jitter indices first_sample...) of window_pixels_, each
   // path starting with throughput `weight`, through all bounces into radiance_. `window`
-  // (the pixels as a rectangle) marks the first pass, which writes the AOVs.
+  // (the pixels as a rectangle) marks a pass of whole rows; with sample 0 it writes the
+  // AOVs of its pixels.
   void renderPass(Frame& frame, int spp, int first_sample, float weight,
                   const PixelWindow* window, const std::function<void(int, int)>& progress);
+  // renderPass over `window` in bands of whole rows of at most max_pass_rays primary rays
+  // (at least one row each), window_pixels_ set to each band's pixels.
+  void renderInBands(Frame& frame, const PixelWindow& window, int spp, float weight,
+                     const std::function<void(int, int)>& progress);
   bool worthTracing(const glm::vec3& weight) const;
-  // The pixel centres of `window` (a pinhole camera) made into primary_rays_ and traced
-  // by Intersector::generateAndIntersectPrimary, in bands of rows that fit a batch; their
-  // hits into `hits`.
+  // The pixel centres of `window` (a pinhole camera, at most one pass of them) made into
+  // primary_rays_ and traced by Intersector::generateAndIntersectPrimary; their hits into
+  // `hits`.
   void tracePrimary(const PixelWindow& window, std::vector<GrHit>& hits,
                     RayDiagnostics* diagnostics, double& ms);
   // Shades one generation (rays, their paths and generations_[depth].hits): leaves what
@@ -136,6 +151,7 @@ class Renderer {
   // renderer would: each depth's own radiance, then its shadow rays that reached their
   // light (so every pixel's sum is the same, bit for bit).
   void addPassRadiance(int depths, PrimaryPaths primary);
+  // The AOVs of window_pixels_ (the arrays sized for the image by render).
   void fillPrimaryAovs(PrimaryAovs& aovs, const std::vector<GrHit>& hits,
                        const RayDiagnostics& diagnostics, int spp);
   struct Spawned;

@@ -1,0 +1,134 @@
+// A frame larger than RenderSettings::max_pass_rays is rendered in passes of whole rows
+// (and adaptive supersampling's extra samples in passes of whole pixels). A pixel lies in
+// one pass, so the image and the AOVs must equal the one-pass render bit for bit.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+
+#include "cl_runtime.h"
+#include "default_scene.h"
+#include "gridrt_intersector.h"
+#include "prepared_triangles.h"
+#include "renderer.h"
+#include "uniform_grid.h"
+
+namespace gridrt {
+namespace {
+
+class RenderPasses : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
+    runtime_ = std::make_unique<ClRuntime>("");
+    scene_ = makeDefaultScene();
+    triangles_ = prepareTriangles(scene_);
+    grid_ = buildUniformGrid(triangles_, sceneBounds(scene_), GridSettings{});
+  }
+  // The frame, and whether the progress calls climbed one scale to its end.
+  Frame render(const RenderSettings& settings, const Camera& camera, bool* climbed = nullptr) {
+    GridRtIntersector gridrt(*runtime_, grid_, false);
+    Renderer renderer(scene_, camera, gridrt, settings);
+    Frame frame;
+    int last = 0, last_total = -1;
+    bool up = true;
+    renderer.render(frame, [&](int done, int total) {
+      up = up && done > last && done <= total && (last_total < 0 || total == last_total);
+      last = done;
+      last_total = total;
+    });
+    if (climbed) *climbed = up && last == last_total;
+    return frame;
+  }
+  static size_t differing(const std::vector<float>& a, const std::vector<float>& b) {
+    if (a.size() != b.size()) return std::max(a.size(), b.size());
+    size_t n = 0;
+    for (size_t k = 0; k < a.size(); ++k) n += a[k] != b[k] && !(a[k] != a[k] && b[k] != b[k]);
+    return n;
+  }
+  void expectSameFrame(const Frame& want, const Frame& got, const std::string& what) {
+    EXPECT_EQ(differing(want.film.rgb, got.film.rgb), 0u) << what << ": image";
+    EXPECT_EQ(differing(want.aovs.depth, got.aovs.depth), 0u) << what << ": depth";
+    EXPECT_EQ(differing(want.aovs.primid, got.aovs.primid), 0u) << what << ": primid";
+    EXPECT_EQ(differing(want.aovs.normal, got.aovs.normal), 0u) << what << ": normal";
+    EXPECT_EQ(differing(want.aovs.tests, got.aovs.tests), 0u) << what << ": tests";
+    EXPECT_EQ(differing(want.aovs.pe, got.aovs.pe), 0u) << what << ": pe";
+    EXPECT_EQ(differing(want.aovs.list_length, got.aovs.list_length), 0u) << what << ": listlen";
+    EXPECT_EQ(want.rays.total(), got.rays.total()) << what;
+    EXPECT_EQ(want.refined_pixels, got.refined_pixels) << what;
+  }
+  std::unique_ptr<ClRuntime> runtime_;
+  Scene scene_;
+  std::vector<GrTriangle> triangles_;
+  UniformGrid grid_;
+};
+
+RenderSettings small() {
+  RenderSettings s;
+  s.width = 150;
+  s.height = 97;  // not a multiple of the bands' heights: a shorter last band
+  s.want_aovs = true;
+  s.want_diagnostics = true;
+  return s;
+}
+
+TEST_F(RenderPasses, RowBandsEqualOnePass) {
+  Camera orthographic = scene_.camera;
+  orthographic.orthographic = true;
+  orthographic.ymag = 1.2f;
+  orthographic.xmag = 1.2f * 150.0f / 97.0f;
+  struct Case {
+    std::string name;
+    RenderSettings settings;
+    Camera camera;
+  };
+  std::vector<Case> cases;
+  cases.push_back({"pinhole", small(), scene_.camera});
+  RenderSettings crop = small();
+  crop.crop = PixelWindow{7, 5, 141, 90};
+  cases.push_back({"crop", crop, scene_.camera});
+  RenderSettings jittered = small();
+  jittered.spp = 3;
+  cases.push_back({"spp 3", jittered, scene_.camera});
+  cases.push_back({"orthographic", small(), orthographic});
+  RenderSettings adaptive = small();
+  adaptive.adaptive_aa = true;
+  adaptive.aa_samples = 4;
+  cases.push_back({"adaptive", adaptive, scene_.camera});
+  for (const Case& c : cases) {
+    RenderSettings one = c.settings;
+    one.max_pass_rays = size_t(1) << 30;
+    const Frame want = render(one, c.camera);
+    RenderSettings many = c.settings;
+    many.max_pass_rays = 2000;
+    bool climbed = false;
+    const Frame got = render(many, c.camera, &climbed);
+    // ceil(rows / floor(2000 / samples per row)) bands: 97 rows of 150 samples in 8 bands,
+    // the crop's 85 rows of 134 in 7, 97 rows of 450 in 25; the refinement in passes of
+    // 500 pixels of 4 samples.
+    const uint64_t bands = c.settings.spp == 3 ? 25 : c.name == "crop" ? 7 : 8;
+    EXPECT_EQ(want.passes, c.settings.adaptive_aa ? 2u : 1u) << c.name;
+    if (c.settings.adaptive_aa) {
+      EXPECT_EQ(got.passes, bands + (got.refined_pixels + 499) / 500) << c.name;
+    } else {
+      EXPECT_EQ(got.passes, bands) << c.name;
+      EXPECT_TRUE(climbed) << c.name << ": progress";
+    }
+    expectSameFrame(want, got, c.name);
+  }
+}
+
+// A row is never split: a budget smaller than one row's samples renders row by row.
+TEST_F(RenderPasses, ABudgetBelowOneRowRendersRowByRow) {
+  RenderSettings one = small();
+  one.spp = 2;
+  const Frame want = render(one, scene_.camera);
+  RenderSettings rows = one;
+  rows.max_pass_rays = 1;
+  const Frame got = render(rows, scene_.camera);
+  EXPECT_EQ(got.passes, uint64_t(one.height));
+  expectSameFrame(want, got, "one row per pass");
+}
+
+}  // namespace
+}  // namespace gridrt
