@@ -9,6 +9,7 @@ their own columns (load_ms, compile_ms, build_ms).
     .venv/bin/python tools/bench.py scaling   # triangles and image size
     .venv/bin/python tools/bench.py whitted   # full Whitted frames with shadows (median of 5 processes)
     .venv/bin/python tools/bench.py targets   # the four speed targets of issue 4
+    .venv/bin/python tools/bench.py single    # one render per process: wall time, peak memory
     .venv/bin/python tools/bench.py all
 """
 import argparse
@@ -257,6 +258,72 @@ def chart_targets(rows, path):
     fig.savefig(path, dpi=110)
 
 
+# One render per process, as a user runs it: the whole process's wall time (start-up,
+# kernels from PoCL's cache, the first frame, writing the PNG) and its peak memory.
+SINGLE_RUNS = 3
+SINGLE = [("default scene", []), ("bunny", [os.path.join(SHARED, "bunny.glb")])]
+SINGLE_SIZES = [(640, 480), (1920, 1080), (3840, 2160)]
+
+
+def run_single(args):
+    import time
+    with tempfile.TemporaryDirectory() as tmp:
+        stats = os.path.join(tmp, "stats.json")
+        cmd = [GRIDRT, *args, "-q", "-o", os.path.join(tmp, "out.png"), "--stats-json", stats]
+        start = time.monotonic()
+        child = subprocess.Popen(cmd)
+        _, status, usage = os.wait4(child.pid, 0)
+        wall = time.monotonic() - start
+        if status != 0:
+            raise subprocess.CalledProcessError(status, cmd)
+        with open(stats) as f:
+            s = json.load(f)
+    s["wall_s"] = wall
+    s["peak_mb"] = usage.ru_maxrss / 1024.0  # kilobytes on Linux
+    return s
+
+
+def bench_single(frames):
+    import statistics
+    rows = []
+    for label, scene in SINGLE:
+        for w, h in SINGLE_SIZES:
+            results = [run_single(scene + ["--width", str(w), "--height", str(h)])
+                       for _ in range(SINGLE_RUNS)]
+            s = dict(results[0])
+            for key in ("wall_s", "peak_mb", "frame_ms"):
+                s[key] = statistics.median(r[key] for r in results)
+            rows.append(row(f"{label} {w}x{h}", s, scene=label, wall_s=s["wall_s"],
+                            peak_mb=s["peak_mb"], passes=s.get("passes", 1)))
+            print(f"single {label:14s} {w}x{h}: {s['wall_s']:6.2f} s, first frame "
+                  f"{s['frame_ms']:8.1f} ms, peak {s['peak_mb']:7.0f} MB", flush=True)
+    return rows
+
+
+def chart_single(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for k, scene in enumerate(dict.fromkeys(r["scene"] for r in rows)):
+        sub = [r for r in rows if r["scene"] == scene]
+        pixels = [r["width"] * r["height"] / 1e6 for r in sub]
+        colour = f"C{k}"
+        axes[0].plot(pixels, [r["wall_s"] for r in sub], "o-", color=colour,
+                     label=f"{scene}: whole process")
+        axes[0].plot(pixels, [r["frame_ms"] / 1000 for r in sub], "x--", color=colour,
+                     label=f"{scene}: its frame")
+        axes[1].plot(pixels, [r["peak_mb"] for r in sub], "o-", color=colour, label=scene)
+    axes[0].set(xlabel="megapixels", ylabel="seconds", title="One render (Whitted, depth 5)")
+    axes[1].set(xlabel="megapixels", ylabel="peak resident MB", title="Peak memory")
+    for a in axes:
+        a.legend(fontsize=7)
+    fig.suptitle(machine_line().replace("medians of frames after a warm-up",
+                                        f"medians of {SINGLE_RUNS} processes"), fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
 def machine_line():
     cpu = platform.processor() or platform.machine()
     try:
@@ -268,7 +335,8 @@ def machine_line():
 
 
 SETS = {"paper": (bench_paper, chart_paper), "scaling": (bench_scaling, chart_scaling),
-        "whitted": (bench_whitted, chart_whitted), "targets": (bench_targets, chart_targets)}
+        "whitted": (bench_whitted, chart_whitted), "targets": (bench_targets, chart_targets),
+        "single": (bench_single, chart_single)}
 
 
 def main():
