@@ -20,6 +20,7 @@
 #include "gltf_loader.h"
 #include "gridrt_intersector.h"
 #include "image_output.h"
+#include "memory_estimate.h"
 #include "prepared_triangles.h"
 #include "progress.h"
 #include "reference_intersector.h"
@@ -32,31 +33,25 @@ namespace gridrt {
 
 namespace {
 
-// Host bytes one primary sample needs across the wavefront (rays, hits, paths, slots);
-// used to refuse images that cannot fit before anything is allocated.
-constexpr double kHostBytesPerSample = 400.0;
-
-double imageBytes(const Options& o) {
-  return double(o.width) * o.height * o.spp * kHostBytesPerSample;
-}
-
-[[noreturn]] void refuseImage(const Options& o, double limit_bytes, const char* where) {
+[[noreturn]] void refuseImage(const Options& o, double bytes, double limit_bytes, const char* where) {
   throw RenderError("image " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                     " at " + std::to_string(o.spp) + " spp needs about " +
-                    std::to_string((long long)(imageBytes(o) / (1 << 20))) + " MiB, more than the " +
+                    std::to_string((long long)(bytes / (1 << 20))) + " MiB, more than the " +
                     std::to_string((long long)(limit_bytes / (1 << 20))) + " MiB of " + where);
 }
 
 // Checked before the scene is loaded or a device opened, so that an absurd size fails at
 // once (gridrt --width 65536 --height 65536) and nothing is allocated for it.
 void checkImageFitsHost(const Options& o) {
-  double host = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-  if (imageBytes(o) > host) refuseImage(o, host, "host memory");
+  const double host = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  const double need = estimateMemory(o.width, o.height, o.spp).host_bytes;
+  if (need > host) refuseImage(o, need, host, "host memory");
 }
 
 void checkImageFitsDevice(const Options& o, const DeviceInfo& device) {
-  if (imageBytes(o) > double(device.global_mem_bytes))
-    refuseImage(o, double(device.global_mem_bytes), "device memory");
+  const double need = estimateMemory(o.width, o.height, o.spp).device_bytes;
+  if (need > double(device.global_mem_bytes))
+    refuseImage(o, need, double(device.global_mem_bytes), "device memory");
 }
 
 // Runs `step`, turning an OpenCL error into a RenderError that says what was being done
