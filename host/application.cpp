@@ -308,6 +308,7 @@ int runApplication(const Options& o) {
   stats["load_ms"] = load_ms;
   stats["build_ms"] = build_ms;
   stats["compile_ms"] = compile_ms;
+  stats["programs"] = {{"loaded", runtime.programsLoaded()}, {"compiled", runtime.programsCompiled()}};
   stats["lists_ms"] = median(t.lists_ms);
   stats["kernel_ms"] = median(t.kernel_ms);
   stats["reduce_ms"] = median(t.reduce_ms);

@@ -6,6 +6,7 @@
 #include <condition_variable>
 #include <exception>
 #include <mutex>
+#include <optional>
 #include <cctype>
 #include <cstdlib>
 #include <regex>
@@ -135,7 +136,8 @@ std::string assembleKernelSource(const std::string& file) {
   return out.str();
 }
 
-ClRuntime::ClRuntime(const std::string& spec) {
+ClRuntime::ClRuntime(const std::string& spec, const std::string& binary_cache_dir)
+    : binaries_(binary_cache_dir) {
   auto platforms = platformsOrEmpty();
   if (platforms.empty())
     throw RenderError(
@@ -174,6 +176,9 @@ ClRuntime::ClRuntime(const std::string& spec) {
   std::vector<cl::Device> platform_devices;
   platforms[info_.platform_index].getDevices(CL_DEVICE_TYPE_ALL, &platform_devices);
   device_ = platform_devices[info_.device_index];
+  device_identity_ = platforms[info_.platform_index].getInfo<CL_PLATFORM_VERSION>() + "\n" +
+                     info_.name + "\n" + device_.getInfo<CL_DEVICE_VERSION>() + "\n" +
+                     device_.getInfo<CL_DRIVER_VERSION>();
   try {
     context_ = cl::Context(device_);
     queue_ = cl::CommandQueue(context_, device_);
@@ -188,12 +193,26 @@ cl::Program& ClRuntime::program(const std::string& file, const std::string& defi
   std::string key = file + "|" + defines;
   auto found = programs_.find(key);
   if (found != programs_.end()) return found->second;
-  cl::Program program(context_, assembleKernelSource(file));
+  const std::string source = assembleKernelSource(file);
   // OpenCL C 1.2 for portability; exact division so scalar and vector code round alike.
   std::string options = "-cl-std=CL1.2 " + defines;
   if (info_.correctly_rounded_div_sqrt) options += " -cl-fp32-correctly-rounded-divide-sqrt";
+  const std::vector<cl::Device> devices{device_};
+  const std::string cache_key = device_identity_ + "\n" + options + "\n" + source;
+  if (std::optional<std::vector<unsigned char>> binary = binaries_.load(cache_key)) {
+    try {
+      cl::Program loaded(context_, devices, cl::Program::Binaries{*binary});
+      loaded.build(devices, options.c_str());
+      ++programs_loaded_;
+      return programs_.emplace(key, loaded).first->second;
+    } catch (const cl::Error&) {
+      // A binary the driver refuses (one that passed the checks): compiled from source
+      // below, and replaced.
+    }
+  }
+  cl::Program program(context_, source);
   try {
-    program.build(std::vector<cl::Device>{device_}, options.c_str());
+    program.build(devices, options.c_str());
   } catch (const cl::Error& e) {
     std::string log;
     try {
@@ -202,6 +221,13 @@ cl::Program& ClRuntime::program(const std::string& file, const std::string& defi
     }
     throw RenderError("building kernel '" + file + "' failed (" + clErrorName(e.err()) +
                       "): " + oneLine(log));
+  }
+  ++programs_compiled_;
+  try {
+    const std::vector<std::vector<unsigned char>> binaries = program.getInfo<CL_PROGRAM_BINARIES>();
+    if (binaries.size() == 1) binaries_.store(cache_key, binaries[0]);
+  } catch (const cl::Error&) {
+    // A driver without program binaries: nothing to keep.
   }
   return programs_.emplace(key, program).first->second;
 }

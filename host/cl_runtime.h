@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "program_binary_cache.h"
+
 namespace gridrt {
 
 struct DeviceInfo {
@@ -39,16 +41,22 @@ class ClRuntime {
   // spec: "" picks the first device of any type; "P:D" by index; "N" the Nth device of
   // --list-devices; else a case-insensitive
   // substring of the device name. Throws UsageError for an unknown device, RenderError
-  // when no OpenCL platform is installed.
-  explicit ClRuntime(const std::string& spec);
+  // when no OpenCL platform is installed. Built programs are kept in binary_cache_dir
+  // ("" for none; program_binary_cache.h).
+  explicit ClRuntime(const std::string& spec,
+                     const std::string& binary_cache_dir = ProgramBinaryCache::defaultDir());
 
   const DeviceInfo& info() const { return info_; }
   cl::Context& context() { return context_; }
   cl::CommandQueue& queue() { return queue_; }
 
-  // Builds (once per file and options) the program of a kernel file. Prints nothing;
-  // a build failure throws RenderError carrying the device's build log.
+  // Builds (once per file and options) the program of a kernel file, from the binary
+  // cache when an earlier run left it there. Prints nothing; a build failure throws
+  // RenderError carrying the device's build log.
   cl::Program& program(const std::string& file, const std::string& defines = "");
+  // Programs this runtime loaded from the binary cache, and compiled from source.
+  int programsLoaded() const { return programs_loaded_; }
+  int programsCompiled() const { return programs_compiled_; }
 
   // Throws RenderError naming `what` if a buffer of `bytes` exceeds the device's limits.
   void checkAllocation(size_t bytes, const std::string& what) const;
@@ -69,6 +77,9 @@ class ClRuntime {
   cl::Context context_;
   cl::CommandQueue queue_;
   std::map<std::string, cl::Program> programs_;
+  ProgramBinaryCache binaries_;
+  std::string device_identity_;  // platform, device and driver versions: part of a cache key
+  int programs_loaded_ = 0, programs_compiled_ = 0;
 };
 
 // A one-line description of an OpenCL error code (e.g. "CL_OUT_OF_RESOURCES").

@@ -1,0 +1,136 @@
+// Program binaries kept between runs (program_binary_cache.h): a second runtime loads what
+// the first compiled and computes the same hits; an entry that does not match its key, a
+// truncated or damaged one is a miss that is compiled again and replaced (a damaged
+// binary handed to PoCL 3.1 crashes it); a cache that cannot be written is no error.
+#include "program_binary_cache.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "brute_intersector.h"
+#include "cl_runtime.h"
+#include "default_scene.h"
+#include "prepared_triangles.h"
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace gridrt {
+namespace {
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void writeBytes(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+TEST(ProgramBinaryCache, AnEntryComesBackOnlyForItsOwnKey) {
+  const ProgramBinaryCache cache(test::freshDir("binary_cache_keys"));
+  const std::vector<unsigned char> binary{1, 2, 3, 0, 255};
+  EXPECT_FALSE(cache.load("key a"));
+  cache.store("key a", binary);
+  ASSERT_TRUE(cache.load("key a"));
+  EXPECT_EQ(*cache.load("key a"), binary);
+  EXPECT_FALSE(cache.load("key b"));
+  // Another key's entry under this key's name (as a hash collision would put it): a miss.
+  writeBytes(cache.pathOf("key b"), fileBytes(cache.pathOf("key a")));
+  EXPECT_FALSE(cache.load("key b"));
+  // A truncated entry (the binary cut short, only the header, the header cut short) or
+  // one byte of the binary changed: a miss.
+  const std::string whole = fileBytes(cache.pathOf("key a"));
+  for (size_t cut : {size_t(1), binary.size(), whole.size() - 10}) {
+    writeBytes(cache.pathOf("key a"), whole.substr(0, whole.size() - cut));
+    EXPECT_FALSE(cache.load("key a")) << "cut " << cut;
+  }
+  std::string changed = whole;
+  changed[changed.size() - 2] ^= 1;
+  writeBytes(cache.pathOf("key a"), changed);
+  EXPECT_FALSE(cache.load("key a"));
+  writeBytes(cache.pathOf("key a"), whole);
+  EXPECT_TRUE(cache.load("key a"));
+  // No temporary files are left behind.
+  EXPECT_EQ(test::listDir(cache.dir()).size(), 2u);
+}
+
+TEST(ProgramBinaryCache, NoDirectoryOrAnUnwritableOneIsNoError) {
+  const ProgramBinaryCache none("");
+  none.store("key", {1, 2, 3});
+  EXPECT_FALSE(none.load("key"));
+  // A directory below a regular file can never be made.
+  const std::string file = test::tempPath("binary_cache_file");
+  writeBytes(file, "x");
+  const ProgramBinaryCache blocked(file + "/cache");
+  blocked.store("key", {1, 2, 3});
+  EXPECT_FALSE(blocked.load("key"));
+}
+
+class ProgramBinaries : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
+    scene_ = makeDefaultScene();
+    triangles_ = prepareTriangles(scene_);
+    rays_.clear();
+    for (int i = 0; i < 256; ++i) {  // a fan from the camera's eye across the box
+      const float a = -0.6f + 1.2f * float(i % 16) / 15.0f, b = 0.1f + 0.8f * float(i / 16) / 15.0f;
+      rays_.push_back(GrRay{0.0f, 0.5f, 1.0f, 0.0f, a, b - 0.5f, -1.0f, 1e30f});
+    }
+  }
+  // The brute-force hits of rays_ through a runtime on `dir`, and its program counts.
+  std::vector<GrHit> trace(const std::string& dir, int& loaded, int& compiled) {
+    ClRuntime runtime("", dir);
+    BruteIntersector brute(runtime, triangles_);
+    std::vector<GrHit> hits;
+    brute.intersect(rays_, HitMode::Closest, hits, nullptr);
+    loaded = runtime.programsLoaded();
+    compiled = runtime.programsCompiled();
+    return hits;
+  }
+  Scene scene_;
+  std::vector<GrTriangle> triangles_;
+  std::vector<GrRay> rays_;
+};
+
+TEST_F(ProgramBinaries, ASecondRuntimeLoadsWhatTheFirstCompiled) {
+  const std::string dir = test::freshDir("binary_cache_runtime");
+  int loaded = 0, compiled = 0;
+  const std::vector<GrHit> first = trace(dir, loaded, compiled);
+  EXPECT_EQ(loaded, 0);
+  EXPECT_EQ(compiled, 1);
+  ASSERT_EQ(test::listDir(dir).size(), 1u);
+  const std::vector<GrHit> second = trace(dir, loaded, compiled);
+  EXPECT_EQ(loaded, 1);
+  EXPECT_EQ(compiled, 0);
+  EXPECT_EQ(test::hitMismatches(first, second, "binary"), 0u);
+  size_t hit = 0;
+  for (const GrHit& h : first) hit += h.prim >= 0;
+  EXPECT_GT(hit, rays_.size() / 2);  // the rays do hit the box
+}
+
+TEST_F(ProgramBinaries, ADamagedBinaryIsCompiledAgainAndReplaced) {
+  const std::string dir = test::freshDir("binary_cache_refused");
+  int loaded = 0, compiled = 0;
+  const std::vector<GrHit> first = trace(dir, loaded, compiled);
+  ASSERT_EQ(test::listDir(dir).size(), 1u);
+  const std::string entry = dir + "/" + test::listDir(dir)[0];
+  // The right key, then bytes that are no program binary (the driver never sees them).
+  std::string bytes = fileBytes(entry);
+  const size_t body = bytes.size() / 2;
+  std::fill(bytes.begin() + bytes.size() - body, bytes.end(), 'x');
+  writeBytes(entry, bytes);
+  const std::vector<GrHit> second = trace(dir, loaded, compiled);
+  EXPECT_EQ(loaded, 0);
+  EXPECT_EQ(compiled, 1);
+  EXPECT_EQ(test::hitMismatches(first, second, "binary"), 0u);
+  trace(dir, loaded, compiled);  // the entry was replaced by a good one
+  EXPECT_EQ(loaded, 1);
+}
+
+}  // namespace
+}  // namespace gridrt
