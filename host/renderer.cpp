@@ -230,7 +230,7 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     for (size_t k = 0; k < passes; ++k) {
       const size_t first = k * per_pass, last = std::min(refine.size(), first + per_pass);
       window_pixels_.assign(refine.begin() + first, refine.begin() + last);
-      renderPass(frame, extra, 1, keep, nullptr, progress);
+      renderPass(frame, extra, 1, keep, nullptr, passProgress(progress, int(k), int(passes)));
     }
   }
 
@@ -241,6 +241,14 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
   for (long long p = 0; p < (long long)pixels; ++p)
     for (int c = 0; c < 3; ++c) frame.film.rgb[3 * p + c] = radiance_[p][c];
   frame.times.frame_ms = frame_clock.ms();
+}
+
+std::function<void(int, int)> Renderer::passProgress(const std::function<void(int, int)>& progress,
+                                                     int pass, int passes) {
+  if (!progress) return {};
+  return [&progress, pass, passes](int done, int total) {
+    progress(pass * total + done, passes * total);
+  };
 }
 
 void Renderer::renderInBands(Frame& frame, const PixelWindow& window, int spp, float weight,
@@ -259,11 +267,7 @@ void Renderer::renderInBands(Frame& frame, const PixelWindow& window, int spp, f
     for (int y = part.y0; y < part.y1; ++y)
       for (int x = part.x0; x < part.x1; ++x)
         window_pixels_[size_t(y - part.y0) * part.width() + (x - part.x0)] = y * settings_.width + x;
-    // The passes' stages one after the other on one progress scale.
-    const auto band_progress = [&](int done, int total) {
-      if (progress) progress(band * total + done, bands * total);
-    };
-    renderPass(frame, spp, 0, weight, &part, band_progress);
+    renderPass(frame, spp, 0, weight, &part, passProgress(progress, band, bands));
   }
 }
 

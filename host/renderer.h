@@ -120,6 +120,9 @@ class Renderer {
   // (at least one row each), window_pixels_ set to each band's pixels.
   void renderInBands(Frame& frame, const PixelWindow& window, int spp, float weight,
                      const std::function<void(int, int)>& progress);
+  // Pass `pass` of `passes`' stages on one progress scale: the passes one after the other.
+  static std::function<void(int, int)> passProgress(const std::function<void(int, int)>& progress,
+                                                    int pass, int passes);
   bool worthTracing(const glm::vec3& weight) const;
   // The pixel centres of `window` (a pinhole camera, at most one pass of them) made into
   // primary_rays_ and traced by Intersector::generateAndIntersectPrimary; their hits into
