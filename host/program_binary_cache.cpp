@@ -2,12 +2,15 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
+#include <utility>
 
 namespace gridrt {
 
@@ -66,6 +69,8 @@ std::optional<std::vector<unsigned char>> ProgramBinaryCache::load(const std::st
   std::vector<unsigned char> binary((std::istreambuf_iterator<char>(in)), {});
   if (binary.size() != length || fnv1a(binary.data(), binary.size()) != checksum)
     return std::nullopt;
+  std::error_code ec;
+  fs::last_write_time(pathOf(key), fs::file_time_type::clock::now(), ec);  // used now
   return binary;
 }
 
@@ -90,6 +95,20 @@ void ProgramBinaryCache::store(const std::string& key,
   }
   fs::rename(temp, path, ec);
   if (ec) fs::remove(temp, ec);
+  prune();
+}
+
+void ProgramBinaryCache::prune() const {
+  std::vector<std::pair<fs::file_time_type, fs::path>> entries;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir_, ec)) {
+    if (e.path().extension() != ".bin") continue;
+    const fs::file_time_type used = e.last_write_time(ec);
+    if (!ec) entries.emplace_back(used, e.path());
+  }
+  if (entries.size() <= kMaxEntries) return;
+  std::sort(entries.begin(), entries.end(), std::greater<>());  // the newest first
+  for (size_t k = kMaxEntries; k < entries.size(); ++k) fs::remove(entries[k].second, ec);
 }
 
 }  // namespace gridrt

@@ -9,7 +9,10 @@
 // damaged file is a miss, never a wrong program or a driver fed garbage. Entries are
 // written to a temporary file and renamed into place (concurrent runs are safe).
 // Nothing here is an error: a directory that cannot be made or written is a miss.
+// The directory keeps the kMaxEntries entries used last (a load marks an entry used);
+// every gridrt version and kernel variant adds its own, ~250 KB each.
 #pragma once
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,6 +21,8 @@ namespace gridrt {
 
 class ProgramBinaryCache {
  public:
+  static constexpr size_t kMaxEntries = 64;
+
   // dir empty: no cache (every load misses, stores do nothing).
   explicit ProgramBinaryCache(std::string dir) : dir_(std::move(dir)) {}
 
@@ -32,6 +37,8 @@ class ProgramBinaryCache {
   std::string pathOf(const std::string& key) const;
 
  private:
+  // Removes all but the kMaxEntries entries used last.
+  void prune() const;
   std::string dir_;
 };
 

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -56,6 +57,29 @@ TEST(ProgramBinaryCache, AnEntryComesBackOnlyForItsOwnKey) {
   EXPECT_TRUE(cache.load("key a"));
   // No temporary files are left behind.
   EXPECT_EQ(test::listDir(cache.dir()).size(), 2u);
+}
+
+TEST(ProgramBinaryCache, KeepsTheEntriesUsedLast) {
+  const ProgramBinaryCache cache(test::freshDir("binary_cache_prune"));
+  const size_t limit = ProgramBinaryCache::kMaxEntries;
+  // Entries stored a second apart (file times set, so the order does not hang on the
+  // file system's clock resolution); entry 0 is loaded, i.e. used, after all the others.
+  const auto start = fs::file_time_type::clock::now() - std::chrono::hours(1);
+  auto key = [](size_t k) { return "key " + std::to_string(k); };
+  for (size_t k = 0; k < limit; ++k) {
+    cache.store(key(k), {1, 2, 3});
+    fs::last_write_time(cache.pathOf(key(k)), start + std::chrono::seconds(k));
+  }
+  EXPECT_EQ(test::listDir(cache.dir()).size(), limit);
+  ASSERT_TRUE(cache.load(key(0)));
+  for (size_t k = limit; k < limit + 5; ++k) {
+    cache.store(key(k), {1, 2, 3});
+    fs::last_write_time(cache.pathOf(key(k)), start + std::chrono::seconds(k));
+  }
+  EXPECT_EQ(test::listDir(cache.dir()).size(), limit);
+  EXPECT_TRUE(cache.load(key(0)));  // used last of the first ones
+  for (size_t k = 1; k <= 5; ++k) EXPECT_FALSE(cache.load(key(k))) << k;  // the oldest went
+  for (size_t k = 6; k < limit + 5; ++k) EXPECT_TRUE(cache.load(key(k))) << k;
 }
 
 TEST(ProgramBinaryCache, NoDirectoryOrAnUnwritableOneIsNoError) {
