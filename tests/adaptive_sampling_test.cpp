@@ -8,21 +8,15 @@
 
 #include "brute_intersector.h"
 #include "cl_runtime.h"
-#include "default_scene.h"
+#include "default_scene_fixture.h"
 #include "prepared_triangles.h"
 #include "renderer.h"
 
 namespace gridrt {
 namespace {
 
-class Adaptive : public ::testing::Test {
+class Adaptive : public test::DefaultSceneTest {
  protected:
-  void SetUp() override {
-    if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
-    runtime_ = std::make_unique<ClRuntime>("");
-    scene_ = makeDefaultScene();
-    triangles_ = prepareTriangles(scene_);
-  }
   Frame render(RenderSettings settings) {
     BruteIntersector brute(*runtime_, triangles_);
     Renderer renderer(scene_, scene_.camera, brute, settings);
@@ -45,9 +39,6 @@ class Adaptive : public ::testing::Test {
     s.height = 96;
     return s;
   }
-  std::unique_ptr<ClRuntime> runtime_;
-  Scene scene_;
-  std::vector<GrTriangle> triangles_;
 };
 
 TEST_F(Adaptive, SupersamplingRefinesOnlyEdgesAndBeatsOneSampleForFewerRaysThanUniform) {

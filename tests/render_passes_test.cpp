@@ -7,7 +7,7 @@
 #include <string>
 
 #include "cl_runtime.h"
-#include "default_scene.h"
+#include "default_scene_fixture.h"
 #include "gridrt_intersector.h"
 #include "prepared_triangles.h"
 #include "renderer.h"
@@ -16,13 +16,11 @@
 namespace gridrt {
 namespace {
 
-class RenderPasses : public ::testing::Test {
+class RenderPasses : public test::DefaultSceneTest {
  protected:
   void SetUp() override {
-    if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
-    runtime_ = std::make_unique<ClRuntime>("");
-    scene_ = makeDefaultScene();
-    triangles_ = prepareTriangles(scene_);
+    DefaultSceneTest::SetUp();
+    if (IsSkipped()) return;
     grid_ = buildUniformGrid(triangles_, sceneBounds(scene_), GridSettings{});
   }
   // The frame, and how many progress scales its calls climbed, each from its start to its
@@ -65,9 +63,6 @@ class RenderPasses : public ::testing::Test {
     EXPECT_EQ(want.rays.total(), got.rays.total()) << what;
     EXPECT_EQ(want.refined_pixels, got.refined_pixels) << what;
   }
-  std::unique_ptr<ClRuntime> runtime_;
-  Scene scene_;
-  std::vector<GrTriangle> triangles_;
   UniformGrid grid_;
 };
 
