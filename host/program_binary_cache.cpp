@@ -101,10 +101,14 @@ void ProgramBinaryCache::store(const std::string& key,
 void ProgramBinaryCache::prune() const {
   std::vector<std::pair<fs::file_time_type, fs::path>> entries;
   std::error_code ec;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir_, ec)) {
-    if (e.path().extension() != ".bin") continue;
-    const fs::file_time_type used = e.last_write_time(ec);
-    if (!ec) entries.emplace_back(used, e.path());
+  try {  // a directory listing that fails half way (it can throw) just ends the pruning
+    for (const fs::directory_entry& e : fs::directory_iterator(dir_, ec)) {
+      if (e.path().extension() != ".bin") continue;
+      const fs::file_time_type used = e.last_write_time(ec);
+      if (!ec) entries.emplace_back(used, e.path());
+    }
+  } catch (const fs::filesystem_error&) {
+    return;
   }
   if (entries.size() <= kMaxEntries) return;
   std::sort(entries.begin(), entries.end(), std::greater<>());  // the newest first
