@@ -2,7 +2,8 @@
 // intersector find their hits on the device, shade on the host (all cores), spawn the
 // next batch (reflection and refraction) and shadow rays per light, until max depth.
 // Nothing later depends on a shadow ray, so the shadow rays of all depths are traced in
-// one batch at the end of the pass, and only then is the light added to the pixels.
+// one batch at the end of the pass, and only then is the light added to the pixels. A
+// large frame is rendered in several such passes, bands of whole rows (kMaxPassRays).
 #pragma once
 #include <array>
 #include <functional>
