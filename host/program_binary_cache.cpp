@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -102,10 +103,14 @@ void ProgramBinaryCache::prune() const {
   std::vector<std::pair<fs::file_time_type, fs::path>> entries;
   std::error_code ec;
   try {  // a directory listing that fails half way (it can throw) just ends the pruning
+    const fs::file_time_type stale = fs::file_time_type::clock::now() - std::chrono::hours(1);
     for (const fs::directory_entry& e : fs::directory_iterator(dir_, ec)) {
-      if (e.path().extension() != ".bin") continue;
       const fs::file_time_type used = e.last_write_time(ec);
-      if (!ec) entries.emplace_back(used, e.path());
+      if (ec) continue;
+      if (e.path().extension() == ".bin")
+        entries.emplace_back(used, e.path());
+      else if (e.path().filename().string().find(".bin.tmp") != std::string::npos && used < stale)
+        fs::remove(e.path(), ec);  // left by a process that died while writing it
     }
   } catch (const fs::filesystem_error&) {
     return;

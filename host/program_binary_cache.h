@@ -37,7 +37,8 @@ class ProgramBinaryCache {
   std::string pathOf(const std::string& key) const;
 
  private:
-  // Removes all but the kMaxEntries entries used last.
+  // Removes all but the kMaxEntries entries used last, and temporary files older than an
+  // hour (a process that died while writing one).
   void prune() const;
   std::string dir_;
 };

@@ -82,6 +82,19 @@ TEST(ProgramBinaryCache, KeepsTheEntriesUsedLast) {
   for (size_t k = 6; k < limit + 5; ++k) EXPECT_TRUE(cache.load(key(k))) << k;
 }
 
+TEST(ProgramBinaryCache, AStoreRemovesTemporaryFilesLeftAnHourAgo) {
+  const ProgramBinaryCache cache(test::freshDir("binary_cache_temps"));
+  const std::string old_temp = cache.pathOf("gone") + ".tmp12345";
+  const std::string new_temp = cache.pathOf("writing") + ".tmp23456";  // being written now
+  writeBytes(old_temp, "half");
+  writeBytes(new_temp, "half");
+  fs::last_write_time(old_temp, fs::file_time_type::clock::now() - std::chrono::hours(2));
+  cache.store("key", {1, 2, 3});
+  EXPECT_FALSE(fs::exists(old_temp));
+  EXPECT_TRUE(fs::exists(new_temp));
+  EXPECT_TRUE(cache.load("key"));
+}
+
 TEST(ProgramBinaryCache, NoDirectoryOrAnUnwritableOneIsNoError) {
   const ProgramBinaryCache none("");
   none.store("key", {1, 2, 3});
