@@ -55,7 +55,8 @@ std::string ProgramBinaryCache::pathOf(const std::string& key) const {
 
 std::optional<std::vector<unsigned char>> ProgramBinaryCache::load(const std::string& key) const {
   if (dir_.empty()) return std::nullopt;
-  std::ifstream in(pathOf(key), std::ios::binary);
+  const std::string path = pathOf(key);
+  std::ifstream in(path, std::ios::binary);
   if (!in) return std::nullopt;
   const std::string expected = header(key);
   std::string found(expected.size(), '\0');
@@ -71,7 +72,7 @@ std::optional<std::vector<unsigned char>> ProgramBinaryCache::load(const std::st
   if (binary.size() != length || fnv1a(binary.data(), binary.size()) != checksum)
     return std::nullopt;
   std::error_code ec;
-  fs::last_write_time(pathOf(key), fs::file_time_type::clock::now(), ec);  // used now
+  fs::last_write_time(path, fs::file_time_type::clock::now(), ec);  // used now
   return binary;
 }
 
