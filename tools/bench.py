@@ -165,18 +165,23 @@ def chart_scaling(rows, path):
     fig.savefig(path, dpi=110)
 
 
+def medians(results, keys):
+    """The first process's statistics with `keys` replaced by their medians over all."""
+    import statistics
+    s = dict(results[0])
+    for key in keys:
+        s[key] = statistics.median(r[key] for r in results)
+    return s
+
+
 def run_median(args, frames, runs):
     """run() in `runs` separate processes; frame and phase times are their medians (one
     busy minute on a shared machine moves a single process by a third)."""
-    import statistics
     results = [run(args, frames) for _ in range(runs)]
     for r in results:
         r["fps"] = 1000.0 / r["frame_ms"]
-    s = dict(results[0])
-    for key in ("frame_ms", "fps", "lists_ms", "kernel_ms", "reduce_ms", "shade_ms", "build_ms",
-                "mrays_per_s"):
-        s[key] = statistics.median(r[key] for r in results)
-    return s
+    return medians(results, ("frame_ms", "fps", "lists_ms", "kernel_ms", "reduce_ms", "shade_ms",
+                             "build_ms", "mrays_per_s"))
 
 
 def bench_whitted(frames):
@@ -259,7 +264,7 @@ def chart_targets(rows, path):
 
 
 # One render per process, as a user runs it: the whole process's wall time (start-up,
-# kernels from PoCL's cache, the first frame, writing the PNG) and its peak memory.
+# loading the kernels, the first frame, writing the PNG) and its peak memory.
 SINGLE_RUNS = 3
 SINGLE = [("default scene", []), ("bunny", [os.path.join(SHARED, "bunny.glb")])]
 SINGLE_SIZES = [(640, 480), (1920, 1080), (3840, 2160)]
@@ -284,15 +289,12 @@ def run_single(args):
 
 
 def bench_single(frames):
-    import statistics
     rows = []
     for label, scene in SINGLE:
         for w, h in SINGLE_SIZES:
             results = [run_single(scene + ["--width", str(w), "--height", str(h)])
                        for _ in range(SINGLE_RUNS)]
-            s = dict(results[0])
-            for key in ("wall_s", "peak_mb", "frame_ms"):
-                s[key] = statistics.median(r[key] for r in results)
+            s = medians(results, ("wall_s", "peak_mb", "frame_ms"))
             rows.append(row(f"{label} {w}x{h}", s, scene=label, wall_s=s["wall_s"],
                             peak_mb=s["peak_mb"], passes=s.get("passes", 1)))
             print(f"single {label:14s} {w}x{h}: {s['wall_s']:6.2f} s, first frame "
