@@ -48,14 +48,12 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
   tests_per_pe_.assign(grid.peCount(), 0);
 }
 
-void GridRtIntersector::runPes(const std::vector<GrRay>& rays, size_t slots, HitMode mode) {
-  const size_t n = rays.size();
+void GridRtIntersector::runPes(size_t n, size_t slots, HitMode mode) {
   const std::vector<GrPeTask>& tasks = bins_.tasks;
   rt_.runWithHostThreadsAsleep([&] {
     enqueueUnmaps();
     enqueueEntriesUnmap();
     if (tasks.empty()) return;
-    rays_.upload(rt_, rays);
     tasks_.upload(rt_, tasks);
     slot_hits_dev_.reserve(rt_, slots);
     first_hit_key_.reserve(rt_, n);
@@ -63,23 +61,22 @@ void GridRtIntersector::runPes(const std::vector<GrRay>& rays, size_t slots, Hit
       rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, n * sizeof(int));
     kernel_.setArg(0, tasks_.get());
     kernel_.setArg(1, entries_.get());
-    kernel_.setArg(2, rays_.get());
-    kernel_.setArg(3, pe_tri_begin_.get());
-    kernel_.setArg(4, pe_triangles_.get());
-    kernel_.setArg(5, slot_hits_dev_.get());
-    kernel_.setArg(6, first_hit_key_.get());
-    kernel_.setArg(7, mode == HitMode::AnyHit ? 1 : 0);
-    kernel_.setArg(8, interrupt_ ? 1 : 0);
-    kernel_.setArg(9, seg_planes_.get());
-    kernel_.setArg(10, seg_stride_);
+    kernel_.setArg(2, pe_tri_begin_.get());
+    kernel_.setArg(3, pe_triangles_.get());
+    kernel_.setArg(4, slot_hits_dev_.get());
+    kernel_.setArg(5, first_hit_key_.get());
+    kernel_.setArg(6, mode == HitMode::AnyHit ? 1 : 0);
+    kernel_.setArg(7, interrupt_ ? 1 : 0);
+    kernel_.setArg(8, seg_planes_.get());
+    kernel_.setArg(9, seg_stride_);
     rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
                                      cl::NDRange(tasks.size() * kPeLocalSize),
                                      cl::NDRange(kPeLocalSize));
     slot_hits_ = static_cast<const GrHit*>(rt_.queue().enqueueMapBuffer(
         slot_hits_dev_.get(), CL_FALSE, CL_MAP_READ, 0, slots * sizeof(GrHit)));
     // Mapped again for the next batch's pairs once the kernel has read them.
-    entries_map_ = mapBuffer<GrPeEntry>(rt_, entries_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
-                                        entries_.capacity());
+    entries_map_ = mapBuffer<float>(rt_, entries_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
+                                    entries_.capacity());
   });
 }
 
@@ -134,14 +131,15 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   Stopwatch clock;
   computeTraversalLists(grid_, rays.data(), n, lists_);
   // The pairs go straight into the device buffer, left mapped by the previous batch.
-  const size_t pairs = lists_.entries.size();
-  if (!entries_map_ || entries_.capacity() < pairs) {
+  const size_t pair_floats =
+      maxPairPackets(lists_.entries.size(), grid_.peCount()) * kPairPacketFloats;
+  if (!entries_map_ || entries_.capacity() < pair_floats) {
     rt_.runWithHostThreadsAsleep([&] {
       enqueueUnmaps();
       enqueueEntriesUnmap();
-      entries_.reserve(rt_, pairs);
-      entries_map_ = mapBuffer<GrPeEntry>(rt_, entries_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
-                                          entries_.capacity());
+      entries_.reserve(rt_, pair_floats);
+      entries_map_ = mapBuffer<float>(rt_, entries_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
+                                      entries_.capacity());
     });
   }
   binByPe(lists_, rays.data(), grid_.peCount(), kPeTaskRays, bins_, entries_map_);
@@ -149,7 +147,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
 
   clock.restart();
   const size_t slots = lists_.entries.size();
-  runPes(rays, slots, mode);
+  runPes(n, slots, mode);
   counters_.kernel_ms += clock.ms();
 
   // Phase 2: walk each ray's list nearest first; the first PE holding a hit wins.

@@ -89,8 +89,8 @@ class GridRtIntersector : public Intersector {
   // The bundle planes (planes_, all its capacity), mapped for writing at the end of each
   // bundle batch for the next one; null when not mapped.
   float* planes_map_ = nullptr;
-  // The same for the list path's pairs (entries_): binByPe writes them there.
-  GrPeEntry* entries_map_ = nullptr;
+  // The same for the list path's pair packets (entries_): binByPe writes them there.
+  float* entries_map_ = nullptr;
   // Enqueue the unmaps of phase 1's results, of the planes and of the pairs (inside
   // ClRuntime::runWithHostThreadsAsleep).
   void enqueueUnmaps();
@@ -100,10 +100,10 @@ class GridRtIntersector : public Intersector {
   uint64_t max_list_length_ = 0;
   bool list_length_known_ = true;
 
-  // Phase 1: uploads the batch (its binned pairs are already in entries_, through
-  // entries_map_) and runs one work-group per task (bins_.tasks); slot_hits_ maps one hit
+  // Phase 1: runs one work-group per task (bins_.tasks) on the batch's pair packets,
+  // already in entries_ through entries_map_ (with their rays); slot_hits_ maps one hit
   // (or a miss, or GR_SKIPPED) per entry slot.
-  void runPes(const std::vector<GrRay>& rays, size_t slots, HitMode mode);
+  void runPes(size_t rays, size_t slots, HitMode mode);
   // The end of a batch, for both paths: adds the batch to the PE load and the counters
   // (phase 1's results stay mapped until the next batch's device commands).
   void finishBatch(const std::vector<int>& pairs_per_pe, size_t rays, uint64_t tests,
@@ -148,8 +148,7 @@ class GridRtIntersector : public Intersector {
   cl::Kernel bundle_kernel_;
   DeviceBuffer<int> pe_tri_begin_{"the PE offsets", CL_MEM_READ_ONLY};
   DeviceBuffer<GrTriangle> pe_triangles_{"the PE triangles", CL_MEM_READ_ONLY};
-  DeviceBuffer<GrRay> rays_{"the ray batch", CL_MEM_READ_ONLY};
-  DeviceBuffer<GrPeEntry> entries_{"the PE inputs", CL_MEM_READ_ONLY};
+  DeviceBuffer<float> entries_{"the PE inputs", CL_MEM_READ_ONLY};
   DeviceBuffer<GrPeTask> tasks_{"the PE tasks", CL_MEM_READ_ONLY};
   DeviceBuffer<GrHit> slot_hits_dev_{"the per-PE hits", CL_MEM_READ_WRITE};
   DeviceBuffer<int> first_hit_key_{"the interrupt flags", CL_MEM_READ_WRITE};

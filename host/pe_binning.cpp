@@ -3,30 +3,67 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstring>
+#include <stdexcept>
 
 namespace gridrt {
 
 namespace {
 
 constexpr int kOctants = 8;
+constexpr int kLanes = GR_PAIR_LANES;
 
 // 0..7 from the signs of the direction (a zero counts as positive).
 int octantOf(const GrRay& ray) {
   return (ray.dx < 0.0f ? 1 : 0) | (ray.dy < 0.0f ? 2 : 0) | (ray.dz < 0.0f ? 4 : 0);
 }
 
+int roundUpToPacket(int lanes) { return (lanes + kLanes - 1) / kLanes * kLanes; }
+
+float intBits(int value) {
+  float f;
+  std::memcpy(&f, &value, sizeof f);
+  return f;
+}
+
+// Pair number `position` (lane position % 16 of packet position / 16).
+void writePair(float* out, int position, const GrRay& ray, int r, int slot,
+               const ListEntry& entry) {
+  float* lane = out + size_t(position / kLanes) * kPairPacketFloats + position % kLanes;
+  lane[gr_pair_value(GR_PAIR_OX, 0)] = ray.ox;
+  lane[gr_pair_value(GR_PAIR_OY, 0)] = ray.oy;
+  lane[gr_pair_value(GR_PAIR_OZ, 0)] = ray.oz;
+  lane[gr_pair_value(GR_PAIR_DX, 0)] = ray.dx;
+  lane[gr_pair_value(GR_PAIR_DY, 0)] = ray.dy;
+  lane[gr_pair_value(GR_PAIR_DZ, 0)] = ray.dz;
+  lane[gr_pair_value(GR_PAIR_TMIN, 0)] = ray.tmin;
+  lane[gr_pair_value(GR_PAIR_TMAX, 0)] = ray.tmax;
+  lane[gr_pair_value(GR_PAIR_T_ENTER, 0)] = entry.t_enter;
+  lane[gr_pair_value(GR_PAIR_T_EXIT, 0)] = entry.t_exit;
+  lane[gr_pair_value(GR_PAIR_RAY, 0)] = intBits(r);
+  lane[gr_pair_value(GR_PAIR_SLOT, 0)] = intBits(slot);
+}
+
 }  // namespace
 
+size_t maxPairPackets(size_t pairs, int pe_count) {
+  const size_t parts = size_t(pe_count) * kOctants;
+  return (pairs + (kLanes - 1) * std::min(pairs, parts) + kLanes - 1) / kLanes;
+}
+
 void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int task_rays,
-             PeBins& bins, GrPeEntry* out) {
+             PeBins& bins, float* out) {
+  if (task_rays <= 0 || task_rays % kLanes != 0)
+    throw std::invalid_argument("binByPe: task_rays must be a positive multiple of 16");
   const int threads = omp_get_max_threads();
   const size_t ray_count = lists.rayCount();
   const int parts = pe_count * kOctants;
   bins.thread_counts.resize(threads);
   if (!out) {
-    bins.entries.resize(lists.entries.size());
-    out = bins.entries.data();
+    bins.pairs.assign(maxPairPackets(lists.entries.size(), pe_count) * kPairPacketFloats, 0.0f);
+    out = bins.pairs.data();
   }
+  int lanes_total = 0;
 #pragma omp parallel num_threads(threads)
   {
     int t = omp_get_thread_num();
@@ -41,34 +78,46 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
 #pragma omp barrier
 #pragma omp single
     {
-      // Exclusive prefix over (part, thread): thread t's pairs of a part follow thread t-1's.
+      // Exclusive prefix over (part, thread): thread t's pairs of a part follow thread
+      // t-1's; every part starts a packet.
       bins.pairs_per_part.assign(parts, 0);
       int offset = 0;
-      for (int part = 0; part < parts; ++part)
+      for (int part = 0; part < parts; ++part) {
+        offset = roundUpToPacket(offset);
         for (int k = 0; k < threads; ++k) {
           int c = bins.thread_counts[k][part];
           bins.thread_counts[k][part] = offset;
           offset += c;
           bins.pairs_per_part[part] += c;
         }
+      }
+      lanes_total = roundUpToPacket(offset);
     }
     for (size_t r = first; r < last; ++r) {
-      const int octant = octantOf(rays[r]);
+      const GrRay& ray = rays[r];
+      const int octant = octantOf(ray);
       for (int e = lists.begin[r]; e < lists.begin[r + 1]; ++e) {
         const ListEntry& le = lists.entries[e];
-        out[counts[le.pe * kOctants + octant]++] = GrPeEntry{int(r), e, le.t_enter, le.t_exit};
+        writePair(out, counts[le.pe * kOctants + octant]++, ray, int(r), e, le);
       }
     }
   }
+  bins.packets = size_t(lanes_total / kLanes);
   bins.tasks.clear();
   bins.pairs_per_pe.assign(pe_count, 0);
-  int start = 0;
+  int start = 0;  // the part's first lane
   for (int part = 0; part < parts; ++part) {
     const int pe = part / kOctants, n = bins.pairs_per_part[part];
+    if (n == 0) continue;
     bins.pairs_per_pe[pe] += n;
     for (int k = 0; k < n; k += task_rays)
-      bins.tasks.push_back(GrPeTask{pe, start + k, std::min(task_rays, n - k), 0});
-    start += n;
+      bins.tasks.push_back(GrPeTask{pe, (start + k) / kLanes, std::min(task_rays, n - k), 0});
+    // Zero the lanes past the part's last pair: no stale values in an inactive lane.
+    for (int position = start + n; position % kLanes != 0; ++position) {
+      float* packet = out + size_t(position / kLanes) * kPairPacketFloats;
+      for (int q = 0; q < GR_PAIR_PLANES; ++q) packet[gr_pair_value(q, position % kLanes)] = 0.0f;
+    }
+    start = roundUpToPacket(start + n);
   }
 }
 

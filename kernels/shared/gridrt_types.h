@@ -43,20 +43,33 @@ typedef struct {
   int nx, ny, nz, pe_count;
 } GrGridInfo; /* 48 bytes */
 
-/* One (ray, PE) pair produced by the traversal lists and binned per PE. */
-typedef struct {
-  int ray;       /* index of the ray in the batch */
-  int slot;      /* index of this pair in the ray-major traversal list (result slot) */
-  float t_enter; /* ray parameter where the ray enters the PE's voxel */
-  float t_exit;  /* ... and where it leaves it */
-} GrPeEntry; /* 16 bytes */
+/* The list path's (ray, PE) pairs, binned per PE, 16 to a packet (a work-item's lanes),
+ * each carrying its ray, so a work-item loads its packet, one vload16 per plane, instead
+ * of gathering rays: plane q of lane k at gr_pair_value(q, k) (structure of arrays). RAY
+ * (the ray's index in the batch) and SLOT (the pair's index in the ray-major traversal
+ * lists, where its result goes) hold int bits. Lanes past a part's last pair are zero. */
+#define GR_PAIR_LANES 16
+#define GR_PAIR_OX 0
+#define GR_PAIR_OY 1
+#define GR_PAIR_OZ 2
+#define GR_PAIR_DX 3
+#define GR_PAIR_DY 4
+#define GR_PAIR_DZ 5
+#define GR_PAIR_TMIN 6
+#define GR_PAIR_TMAX 7
+#define GR_PAIR_T_ENTER 8 /* ray parameter where the ray enters the PE's voxel */
+#define GR_PAIR_T_EXIT 9  /* ... and where it leaves it */
+#define GR_PAIR_RAY 10
+#define GR_PAIR_SLOT 11
+#define GR_PAIR_PLANES 12
+#define gr_pair_value(q, k) ((q) * GR_PAIR_LANES + (k))
 
-/* One work-group's share of one PE: entries [first_entry, first_entry + entry_count);
- * an entry's result goes to slot_base + entry.slot. */
+/* One work-group's share of one PE: the pair_count pairs from packet first_packet on
+ * (work-item w takes packet first_packet + w); a pair's result goes to slot_base + SLOT. */
 typedef struct {
   int pe;
-  int first_entry;
-  int entry_count;
+  int first_packet;
+  int pair_count;
   int slot_base;
 } GrPeTask; /* 16 bytes */
 
@@ -127,7 +140,6 @@ static_assert(sizeof(GrRay) == 32, "GrRay layout");
 static_assert(sizeof(GrTriangle) == 48, "GrTriangle layout");
 static_assert(sizeof(GrHit) == 16, "GrHit layout");
 static_assert(sizeof(GrGridInfo) == 48, "GrGridInfo layout");
-static_assert(sizeof(GrPeEntry) == 16, "GrPeEntry layout");
 static_assert(sizeof(GrPeTask) == 16, "GrPeTask layout");
 static_assert(sizeof(GrBundleTask) == 16, "GrBundleTask layout");
 static_assert(sizeof(GrPacketMasks) == 16, "GrPacketMasks layout");
