@@ -39,17 +39,6 @@ GrRay makeRay(const glm::vec3& o, const glm::vec3& d, float tmax) {
   return GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, tmax};
 }
 
-// Barycentric weights of p (on or near the triangle's plane) for vertices v[0], v[1], v[2].
-glm::vec3 barycentric(const glm::vec3* v, const glm::vec3& p) {
-  glm::vec3 e1 = v[1] - v[0], e2 = v[2] - v[0], w = p - v[0];
-  float d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
-  float w1 = glm::dot(w, e1), w2 = glm::dot(w, e2);
-  float det = d11 * d22 - d12 * d12;
-  if (!(det > 0.0f)) return glm::vec3(1.0f / 3.0f);
-  float b1 = (d22 * w1 - d12 * w2) / det, b2 = (d11 * w2 - d12 * w1) / det;
-  return glm::vec3(1.0f - b1 - b2, b1, b2);
-}
-
 // Diagnostics of one batch appended after those of the batches before it.
 void appendDiagnostics(RayDiagnostics& all, const RayDiagnostics& batch) {
   auto append = [](std::vector<int>& to, const std::vector<int>& from) {
@@ -108,6 +97,7 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, Intersector& inters
     float len = glm::length(n);
     geometric_normals_[t] = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
   }
+  shading_triangles_ = makeShadingTriangles(scene, geometric_normals_);
   lights_ = scene.has_lights ? scene.lights : std::vector<Light>{defaultLight(scene, camera)};
   for (const Material& m : scene.materials) material_terms_.push_back(surfaceTerms(m));
 }
@@ -435,22 +425,51 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   Spawned& out = spawned_[chunk];
   out.shadow_count = 0;
   out.ray_count = 0;
+  out.light_lanes.resize(lights_.size());
+  SurfaceLanes& lanes = out.surfaces;
   const size_t chunk_begin = size_t(chunk) * kShadeChunkRays;
   const size_t chunk_end = std::min(n, chunk_begin + kShadeChunkRays);
   // The primary generation in its shading order: sample `sample` of the pixel at
   // `position` of the order (j / spp and j % spp, counted along instead of divided).
   const size_t spp = size_t(primary.spp);
   size_t position = chunk_begin / spp, sample = chunk_begin % spp;
-  for (size_t j = chunk_begin; j < chunk_end;
-       ++j, sample = sample + 1 == spp ? 0 : sample + 1, position += sample == 0) {
-    const size_t pixel_index = paths ? 0 : primary.order ? size_t(primary.order[position]) : position;
-    const size_t i = paths || !primary.order ? j : pixel_index * spp + sample;
-    const GrRay& ray = rays[i];
-    const PathRay path = paths ? (*paths)[i]
-                               : PathRay{window_pixels_[pixel_index], glm::vec3(primary.weight),
-                                         RayKind::Primary};
+  // The rays in blocks of 16: their surfaces and light directions in lanes, then each
+  // hit's shading in order.
+  size_t block_ray[kSurfaceLanes];
+  PathRay block_path[kSurfaceLanes];
+  for (size_t block = chunk_begin; block < chunk_end; block += kSurfaceLanes) {
+    const int count = int(std::min<size_t>(kSurfaceLanes, chunk_end - block));
+    for (int k = 0; k < kSurfaceLanes; ++k) {
+      if (k >= count) {  // past the chunk: a harmless copy of lane 0
+        lanes.ox[k] = lanes.ox[0], lanes.oy[k] = lanes.oy[0], lanes.oz[k] = lanes.oz[0];
+        lanes.dx[k] = lanes.dx[0], lanes.dy[k] = lanes.dy[0], lanes.dz[k] = lanes.dz[0];
+        lanes.t[k] = lanes.t[0], lanes.tri[k] = lanes.tri[0];
+        continue;
+      }
+      const size_t pixel_index = paths ? 0 : primary.order ? size_t(primary.order[position]) : position;
+      const size_t i = paths || !primary.order ? block + k : pixel_index * spp + sample;
+      block_ray[k] = i;
+      block_path[k] = paths ? (*paths)[i]
+                            : PathRay{window_pixels_[pixel_index], glm::vec3(primary.weight),
+                                      RayKind::Primary};
+      sample = sample + 1 == spp ? 0 : sample + 1;
+      position += sample == 0;
+      const GrRay& ray = rays[i];
+      const GrHit& hit = g.hits[i];
+      lanes.ox[k] = ray.ox, lanes.oy[k] = ray.oy, lanes.oz[k] = ray.oz;
+      lanes.dx[k] = ray.dx, lanes.dy[k] = ray.dy, lanes.dz[k] = ray.dz;
+      lanes.t[k] = hit.prim >= 0 ? hit.t : 0.0f;
+      lanes.tri[k] = hit.prim >= 0 ? hit.prim : 0;
+    }
+    computeSurfaces(shading_triangles_.data(), !scene_.normals.empty(), lanes);
+    if (!settings_.primary_only)
+      for (size_t l = 0; l < lights_.size(); ++l)
+        computeLightLanes(lights_[l], lanes, out.light_lanes[l]);
+  for (int k = 0; k < count; ++k) {
+    const size_t i = block_ray[k];
+    const PathRay& path = block_path[k];
     const GrHit& hit = g.hits[i];
-    glm::vec3 d(ray.dx, ray.dy, ray.dz);
+    glm::vec3 d(lanes.dx[k], lanes.dy[k], lanes.dz[k]);
     if (hit.prim < 0) {
       local[i] = path.weight * settings_.background;
       continue;
@@ -459,21 +478,10 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
     const Material& mat = scene_.materials[scene_.material_of[tri]];
     const SurfaceTerms& terms = material_terms_[scene_.material_of[tri]];
     glm::vec3 weight = path.weight;
-    glm::vec3 p = glm::vec3(ray.ox, ray.oy, ray.oz) + hit.t * d;
-    glm::vec3 ng = geometric_normals_[tri];
-    glm::vec3 n = ng;
-    if (!scene_.normals.empty()) {
-      // Barycentrics from the hit point in the file's vertex order (the kernels' u, v
-      // refer to the canonical order of prepareTriangles).
-      glm::vec3 b = barycentric(&scene_.positions[3 * tri], p);
-      glm::vec3 s = b.x * scene_.normals[3 * tri] + b.y * scene_.normals[3 * tri + 1] +
-                    b.z * scene_.normals[3 * tri + 2];
-      float len = glm::length(s);
-      if (len > 0.0f) n = s / len;
-    }
-    bool backface = glm::dot(ng, d) > 0.0f;
-    if (backface) ng = -ng;
-    if (glm::dot(n, ng) < 0.0f) n = -n;
+    const glm::vec3 p(lanes.px[k], lanes.py[k], lanes.pz[k]);
+    const glm::vec3 ng(lanes.gx[k], lanes.gy[k], lanes.gz[k]);
+    const glm::vec3 n(lanes.nx[k], lanes.ny[k], lanes.nz[k]);
+    const bool backface = lanes.backface[k];
     if (settings_.primary_only) {
       local[i] = weight * mat.base_color * std::fabs(glm::dot(n, d));
       continue;
@@ -483,14 +491,14 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       weight *= glm::pow(glm::max(mat.attenuation_color, glm::vec3(1e-6f)),
                          glm::vec3(hit.t / mat.attenuation_distance));
     local[i] = weight * (mat.emissive + settings_.ambient * terms.diffuse);
-    const glm::vec3 origin(ray.ox, ray.oy, ray.oz);
+    const glm::vec3 origin(lanes.ox[k], lanes.oy[k], lanes.oz[k]);
     glm::vec3 above = offsetRayOrigin(p, ng, origin, settings_.ray_offset);
     for (size_t l = 0; l < lights_.size(); ++l) {
-      glm::vec3 to_light;
-      float distance;
-      glm::vec3 e = lightIrradiance(lights_[l], p, to_light, distance);
-      float cos_theta = glm::dot(n, to_light);
-      if (cos_theta <= 0.0f || glm::dot(ng, to_light) <= 0.0f || glm::length(e) == 0.0f) continue;
+      const LightLanes& light = out.light_lanes[l];
+      if (!light.lit[k]) continue;
+      const glm::vec3 to_light(light.lx[k], light.ly[k], light.lz[k]);
+      const glm::vec3 e(light.ex[k], light.ey[k], light.ez[k]);
+      const float cos_theta = light.cos_theta[k];
       glm::vec3 r = reflectDirection(-to_light, n);
       float rv = std::max(0.0f, glm::dot(r, -d));
       // pow(0, e) is 0 for the exponent (>= 1): no call for the half turned away.
@@ -498,9 +506,9 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       glm::vec3 direct = terms.diffuse / kPi * e * cos_theta + terms.specular * e * highlight;
       glm::vec3 contribution = weight * direct;
       if (glm::length(contribution) == 0.0f) continue;
-      const size_t k = nextSlot(out.shadow_rays, out.shadows, out.shadow_count);
-      out.shadow_rays[k] = makeRay(above, to_light, distance);
-      out.shadows[k] = ShadowRay{path.pixel, int(l), contribution};
+      const size_t s = nextSlot(out.shadow_rays, out.shadows, out.shadow_count);
+      out.shadow_rays[s] = makeRay(above, to_light, light.distance[k]);
+      out.shadows[s] = ShadowRay{path.pixel, int(l), contribution};
     }
     if (!spawn) continue;
     glm::vec3 reflect_weight = terms.mirror;
@@ -511,9 +519,9 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       glm::vec3 t_weight = weight * terms.transmission * (1.0f - f) * mat.base_color;
       if (f < 1.0f && refractDirection(d, n, eta, t_dir) && glm::dot(t_dir, ng) < 0.0f) {
         if (worthTracing(t_weight)) {
-          const size_t k = nextSlot(out.rays, out.paths, out.ray_count);
-          out.rays[k] = makeRay(offsetRayOrigin(p, -ng, origin, settings_.ray_offset), t_dir, kInf);
-          out.paths[k] = PathRay{path.pixel, t_weight, RayKind::Refraction};
+          const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
+          out.rays[s] = makeRay(offsetRayOrigin(p, -ng, origin, settings_.ray_offset), t_dir, kInf);
+          out.paths[s] = PathRay{path.pixel, t_weight, RayKind::Refraction};
         }
       } else {
         f = 1.0f;  // total internal reflection
@@ -523,10 +531,11 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
     if (glm::length(reflect_weight) > 0.0f && worthTracing(weight * reflect_weight)) {
       glm::vec3 r = reflectDirection(d, n);
       if (glm::dot(r, ng) <= 0.0f) r = reflectDirection(d, ng);  // keep it above the surface
-      const size_t k = nextSlot(out.rays, out.paths, out.ray_count);
-      out.rays[k] = makeRay(above, r, kInf);
-      out.paths[k] = PathRay{path.pixel, weight * reflect_weight, RayKind::Reflection};
+      const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
+      out.rays[s] = makeRay(above, r, kInf);
+      out.paths[s] = PathRay{path.pixel, weight * reflect_weight, RayKind::Reflection};
     }
+  }
   }
   }
   frame.times.shade_ms += clock.ms();

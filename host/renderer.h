@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "hit_surfaces.h"
 #include "image_output.h"
 #include "intersector.h"
 #include "pixel_window.h"
@@ -173,6 +174,7 @@ class Renderer {
   Intersector& intersector_;
   RenderSettings settings_;
   std::vector<glm::vec3> geometric_normals_;  // per triangle, unit
+  std::vector<ShadingTriangle> shading_triangles_;  // per triangle
   std::vector<Light> lights_;                 // the scene's, or the default light
   std::vector<SurfaceTerms> material_terms_;  // per material
 
@@ -186,6 +188,8 @@ class Renderer {
     std::vector<GrRay> rays;
     std::vector<PathRay> paths;  // as many as rays
     size_t ray_count = 0;
+    SurfaceLanes surfaces;                 // scratch: one block of 16 hits
+    std::vector<LightLanes> light_lanes;   // ... and each light seen from them
   };
   // One depth's arrays, kept from frame to frame, so each keeps about the size it had in
   // the last frame: growing a std::vector zero-fills its new part, which one set shared
