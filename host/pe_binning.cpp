@@ -30,6 +30,13 @@ float intBits(int value) {
 void writePair(float* out, int position, const GrRay& ray, int r, int slot,
                const ListEntry& entry) {
   float* lane = out + size_t(position / kLanes) * kPairPacketFloats + position % kLanes;
+  if (position % kLanes == 0) {
+    // A part's packets follow one another: the next one's lines are fetched for writing
+    // now, sixteen of the part's pairs before they are needed (each store would
+    // otherwise wait for its line: the buffer is larger than the core's cache).
+    const float* next = lane + kPairPacketFloats;
+    for (int q = 0; q < GR_PAIR_PLANES; ++q) __builtin_prefetch(next + q * kLanes, 1, 3);
+  }
   lane[gr_pair_value(GR_PAIR_OX, 0)] = ray.ox;
   lane[gr_pair_value(GR_PAIR_OY, 0)] = ray.oy;
   lane[gr_pair_value(GR_PAIR_OZ, 0)] = ray.oz;
