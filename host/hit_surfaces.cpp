@@ -10,11 +10,6 @@ namespace {
 
 constexpr int L = kSurfaceLanes;
 
-// GLM's dot product of two vec3s, (x + y) + z.
-inline float dot3(float ax, float ay, float az, float bx, float by, float bz) {
-  return ax * bx + ay * by + az * bz;
-}
-
 }  // namespace
 
 std::vector<ShadingTriangle> makeShadingTriangles(const Scene& scene,
@@ -40,50 +35,14 @@ std::vector<ShadingTriangle> makeShadingTriangles(const Scene& scene,
 }
 
 void computeSurfaces(const ShadingTriangle* triangles, bool smooth, SurfaceLanes& s) {
-  // The triangles' data gathered into lanes first, so the arithmetic below is plain
-  // lane loops.
-  alignas(64) float v0x[L], v0y[L], v0z[L], e1x[L], e1y[L], e1z[L], e2x[L], e2y[L], e2z[L];
-  alignas(64) float d11[L], d12[L], d22[L], det[L];
-  alignas(64) float n0x[L], n0y[L], n0z[L], n1x[L], n1y[L], n1z[L], n2x[L], n2y[L], n2z[L];
-  for (int k = 0; k < L; ++k) {
-    const ShadingTriangle& tri = triangles[s.tri[k]];
-    v0x[k] = tri.v0.x, v0y[k] = tri.v0.y, v0z[k] = tri.v0.z;
-    e1x[k] = tri.e1.x, e1y[k] = tri.e1.y, e1z[k] = tri.e1.z;
-    e2x[k] = tri.e2.x, e2y[k] = tri.e2.y, e2z[k] = tri.e2.z;
-    d11[k] = tri.d11, d12[k] = tri.d12, d22[k] = tri.d22, det[k] = tri.det;
-    n0x[k] = tri.n0.x, n0y[k] = tri.n0.y, n0z[k] = tri.n0.z;
-    n1x[k] = tri.n1.x, n1y[k] = tri.n1.y, n1z[k] = tri.n1.z;
-    n2x[k] = tri.n2.x, n2y[k] = tri.n2.y, n2z[k] = tri.n2.z;
-    s.gx[k] = tri.geometric.x, s.gy[k] = tri.geometric.y, s.gz[k] = tri.geometric.z;
-  }
 #pragma omp simd
   for (int k = 0; k < L; ++k) {
-    const float px = s.ox[k] + s.t[k] * s.dx[k];
-    const float py = s.oy[k] + s.t[k] * s.dy[k];
-    const float pz = s.oz[k] + s.t[k] * s.dz[k];
-    s.px[k] = px, s.py[k] = py, s.pz[k] = pz;
-    float nx = s.gx[k], ny = s.gy[k], nz = s.gz[k];
-    if (smooth) {
-      // Barycentrics of p in the file's vertex order (the kernels' u, v refer to the
-      // canonical order of prepareTriangles); a degenerate triangle weighs all three alike.
-      const float wx = px - v0x[k], wy = py - v0y[k], wz = pz - v0z[k];
-      const float w1 = dot3(wx, wy, wz, e1x[k], e1y[k], e1z[k]);
-      const float w2 = dot3(wx, wy, wz, e2x[k], e2y[k], e2z[k]);
-      const bool solid = det[k] > 0.0f;
-      const float b1 = solid ? (d22[k] * w1 - d12[k] * w2) / det[k] : 1.0f / 3.0f;
-      const float b2 = solid ? (d11[k] * w2 - d12[k] * w1) / det[k] : 1.0f / 3.0f;
-      const float b0 = solid ? 1.0f - b1 - b2 : 1.0f / 3.0f;
-      const float sx = b0 * n0x[k] + b1 * n1x[k] + b2 * n2x[k];
-      const float sy = b0 * n0y[k] + b1 * n1y[k] + b2 * n2y[k];
-      const float sz = b0 * n0z[k] + b1 * n1z[k] + b2 * n2z[k];
-      const float len = std::sqrt(dot3(sx, sy, sz, sx, sy, sz));
-      if (len > 0.0f) nx = sx / len, ny = sy / len, nz = sz / len;
-    }
-    const bool backface = dot3(s.gx[k], s.gy[k], s.gz[k], s.dx[k], s.dy[k], s.dz[k]) > 0.0f;
-    if (backface) s.gx[k] = -s.gx[k], s.gy[k] = -s.gy[k], s.gz[k] = -s.gz[k];
-    if (dot3(nx, ny, nz, s.gx[k], s.gy[k], s.gz[k]) < 0.0f) nx = -nx, ny = -ny, nz = -nz;
-    s.nx[k] = nx, s.ny[k] = ny, s.nz[k] = nz;
-    s.backface[k] = backface;
+    const HitSurface h = surfaceAt(triangles[s.tri[k]], smooth, s.ox[k], s.oy[k], s.oz[k],
+                                   s.dx[k], s.dy[k], s.dz[k], s.t[k]);
+    s.px[k] = h.px, s.py[k] = h.py, s.pz[k] = h.pz;
+    s.nx[k] = h.nx, s.ny[k] = h.ny, s.nz[k] = h.nz;
+    s.gx[k] = h.gx, s.gy[k] = h.gy, s.gz[k] = h.gz;
+    s.backface[k] = h.backface;
   }
 }
 
@@ -100,7 +59,10 @@ void computeLightLanes(const Light& light, const SurfaceLanes& s, LightLanes& ou
     // As lightIrradiance (whitted_shading.cpp): inverse square falloff, the range window,
     // the spot cone.
     const bool spot = light.type == LightType::Spot;
-    const float cos_outer = std::cos(light.outer_cone), cos_inner = std::cos(light.inner_cone);
+    // The cone's terms only for a spot (two std::cos calls a block cost more than the
+    // block's arithmetic).
+    const float cos_outer = spot ? std::cos(light.outer_cone) : 0.0f;
+    const float cos_inner = spot ? std::cos(light.inner_cone) : 0.0f;
     const float cone_scale = 1.0f / std::max(1e-3f, cos_inner - cos_outer);
     const glm::vec3 axis = spot ? glm::normalize(light.direction) : glm::vec3(0.0f);
     alignas(64) float attenuation[L], r4[L];

@@ -433,47 +433,56 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   // `position` of the order (j / spp and j % spp, counted along instead of divided).
   const size_t spp = size_t(primary.spp);
   size_t position = chunk_begin / spp, sample = chunk_begin % spp;
-  // The rays in blocks of 16: their surfaces and light directions in lanes, then each
-  // hit's shading in order.
+  // The hits in blocks of 16 (a miss is done at once): their surfaces and light
+  // directions in lanes, then each hit's shading in order.
   size_t block_ray[kSurfaceLanes];
   PathRay block_path[kSurfaceLanes];
-  for (size_t block = chunk_begin; block < chunk_end; block += kSurfaceLanes) {
-    const int count = int(std::min<size_t>(kSurfaceLanes, chunk_end - block));
-    for (int k = 0; k < kSurfaceLanes; ++k) {
-      if (k >= count) {  // past the chunk: a harmless copy of lane 0
-        lanes.ox[k] = lanes.ox[0], lanes.oy[k] = lanes.oy[0], lanes.oz[k] = lanes.oz[0];
-        lanes.dx[k] = lanes.dx[0], lanes.dy[k] = lanes.dy[0], lanes.dz[k] = lanes.dz[0];
-        lanes.t[k] = lanes.t[0], lanes.tri[k] = lanes.tri[0];
-        continue;
-      }
+  for (size_t j = chunk_begin; j < chunk_end;) {
+    int count = 0;
+    for (; count < kSurfaceLanes && j < chunk_end; ++j) {
       const size_t pixel_index = paths ? 0 : primary.order ? size_t(primary.order[position]) : position;
-      const size_t i = paths || !primary.order ? block + k : pixel_index * spp + sample;
-      block_ray[k] = i;
-      block_path[k] = paths ? (*paths)[i]
-                            : PathRay{window_pixels_[pixel_index], glm::vec3(primary.weight),
-                                      RayKind::Primary};
+      const size_t i = paths || !primary.order ? j : pixel_index * spp + sample;
+      const PathRay path = paths ? (*paths)[i]
+                                 : PathRay{window_pixels_[pixel_index], glm::vec3(primary.weight),
+                                           RayKind::Primary};
       sample = sample + 1 == spp ? 0 : sample + 1;
       position += sample == 0;
-      const GrRay& ray = rays[i];
       const GrHit& hit = g.hits[i];
+      if (hit.prim < 0) {
+        local[i] = path.weight * settings_.background;
+        continue;
+      }
+      const GrRay& ray = rays[i];
+      if (settings_.primary_only) {  // headlight shading: one hit at a time is enough
+        const HitSurface h = surfaceAt(shading_triangles_[hit.prim], !scene_.normals.empty(),
+                                       ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
+        const glm::vec3& base = scene_.materials[scene_.material_of[hit.prim]].base_color;
+        local[i] = path.weight * base *
+                   std::fabs(glm::dot(glm::vec3(h.nx, h.ny, h.nz), glm::vec3(ray.dx, ray.dy, ray.dz)));
+        continue;
+      }
+      const int k = count++;
+      block_ray[k] = i;
+      block_path[k] = path;
       lanes.ox[k] = ray.ox, lanes.oy[k] = ray.oy, lanes.oz[k] = ray.oz;
       lanes.dx[k] = ray.dx, lanes.dy[k] = ray.dy, lanes.dz[k] = ray.dz;
-      lanes.t[k] = hit.prim >= 0 ? hit.t : 0.0f;
-      lanes.tri[k] = hit.prim >= 0 ? hit.prim : 0;
+      lanes.t[k] = hit.t;
+      lanes.tri[k] = hit.prim;
+    }
+    if (count == 0) continue;
+    for (int k = count; k < kSurfaceLanes; ++k) {  // a block's last lanes: copies of lane 0
+      lanes.ox[k] = lanes.ox[0], lanes.oy[k] = lanes.oy[0], lanes.oz[k] = lanes.oz[0];
+      lanes.dx[k] = lanes.dx[0], lanes.dy[k] = lanes.dy[0], lanes.dz[k] = lanes.dz[0];
+      lanes.t[k] = lanes.t[0], lanes.tri[k] = lanes.tri[0];
     }
     computeSurfaces(shading_triangles_.data(), !scene_.normals.empty(), lanes);
-    if (!settings_.primary_only)
-      for (size_t l = 0; l < lights_.size(); ++l)
-        computeLightLanes(lights_[l], lanes, out.light_lanes[l]);
+    for (size_t l = 0; l < lights_.size(); ++l)
+      computeLightLanes(lights_[l], lanes, out.light_lanes[l]);
   for (int k = 0; k < count; ++k) {
     const size_t i = block_ray[k];
     const PathRay& path = block_path[k];
     const GrHit& hit = g.hits[i];
     glm::vec3 d(lanes.dx[k], lanes.dy[k], lanes.dz[k]);
-    if (hit.prim < 0) {
-      local[i] = path.weight * settings_.background;
-      continue;
-    }
     const int tri = hit.prim;
     const Material& mat = scene_.materials[scene_.material_of[tri]];
     const SurfaceTerms& terms = material_terms_[scene_.material_of[tri]];
@@ -482,10 +491,6 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
     const glm::vec3 ng(lanes.gx[k], lanes.gy[k], lanes.gz[k]);
     const glm::vec3 n(lanes.nx[k], lanes.ny[k], lanes.nz[k]);
     const bool backface = lanes.backface[k];
-    if (settings_.primary_only) {
-      local[i] = weight * mat.base_color * std::fabs(glm::dot(n, d));
-      continue;
-    }
     // Beer-Lambert absorption inside a transmissive volume (KHR_materials_volume).
     if (backface && mat.transmission > 0.0f && mat.attenuation_distance > 0.0f)
       weight *= glm::pow(glm::max(mat.attenuation_color, glm::vec3(1e-6f)),
