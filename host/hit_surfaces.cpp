@@ -14,8 +14,8 @@ constexpr int L = kSurfaceLanes;
 
 std::vector<ShadingTriangle> makeShadingTriangles(const Scene& scene,
                                                   const std::vector<glm::vec3>& geometric_normals) {
+  if (scene.normals.empty()) return {};
   std::vector<ShadingTriangle> out(scene.triangleCount());
-  const bool smooth = !scene.normals.empty();
   for (size_t i = 0; i < out.size(); ++i) {
     const glm::vec3* v = &scene.positions[3 * i];
     ShadingTriangle& s = out[i];
@@ -26,24 +26,54 @@ std::vector<ShadingTriangle> makeShadingTriangles(const Scene& scene,
     s.d12 = glm::dot(s.e1, s.e2);
     s.d22 = glm::dot(s.e2, s.e2);
     s.det = s.d11 * s.d22 - s.d12 * s.d12;
-    s.n0 = smooth ? scene.normals[3 * i] : glm::vec3(0.0f);
-    s.n1 = smooth ? scene.normals[3 * i + 1] : glm::vec3(0.0f);
-    s.n2 = smooth ? scene.normals[3 * i + 2] : glm::vec3(0.0f);
+    s.n0 = scene.normals[3 * i];
+    s.n1 = scene.normals[3 * i + 1];
+    s.n2 = scene.normals[3 * i + 2];
     s.geometric = geometric_normals[i];
   }
   return out;
 }
 
-void computeSurfaces(const ShadingTriangle* triangles, bool smooth, SurfaceLanes& s) {
+namespace {
+
+// surfaceAt in every lane: with vertex normals (the geometric normal from the shading
+// triangle), or without (from g). The normals are read as floats: a lane loop gathers
+// floats, not 12-byte structs.
+void smoothSurfaceLanes(const ShadingTriangle* triangles, SurfaceLanes& s) {
 #pragma omp simd
   for (int k = 0; k < L; ++k) {
-    const HitSurface h = surfaceAt(triangles[s.tri[k]], smooth, s.ox[k], s.oy[k], s.oz[k],
-                                   s.dx[k], s.dy[k], s.dz[k], s.t[k]);
+    const ShadingTriangle& tri = triangles[s.tri[k]];
+    const HitSurface h =
+        surfaceAt<true>(&tri, glm::vec3(tri.geometric.x, tri.geometric.y, tri.geometric.z),
+                        s.ox[k], s.oy[k], s.oz[k], s.dx[k], s.dy[k], s.dz[k], s.t[k]);
     s.px[k] = h.px, s.py[k] = h.py, s.pz[k] = h.pz;
     s.nx[k] = h.nx, s.ny[k] = h.ny, s.nz[k] = h.nz;
     s.gx[k] = h.gx, s.gy[k] = h.gy, s.gz[k] = h.gz;
     s.backface[k] = h.backface;
   }
+}
+
+void flatSurfaceLanes(const float* g, SurfaceLanes& s) {
+#pragma omp simd
+  for (int k = 0; k < L; ++k) {
+    const int i = s.tri[k];
+    const HitSurface h = surfaceAt<false>(nullptr, glm::vec3(g[3 * i], g[3 * i + 1], g[3 * i + 2]),
+                                          s.ox[k], s.oy[k], s.oz[k], s.dx[k], s.dy[k], s.dz[k],
+                                          s.t[k]);
+    s.px[k] = h.px, s.py[k] = h.py, s.pz[k] = h.pz;
+    s.nx[k] = h.nx, s.ny[k] = h.ny, s.nz[k] = h.nz;
+    s.gx[k] = h.gx, s.gy[k] = h.gy, s.gz[k] = h.gz;
+    s.backface[k] = h.backface;
+  }
+}
+
+}  // namespace
+
+void computeSurfaces(const ShadingTriangle* triangles, const glm::vec3* geometric, SurfaceLanes& s) {
+  if (triangles)
+    smoothSurfaceLanes(triangles, s);
+  else
+    flatSurfaceLanes(&geometric[0].x, s);
 }
 
 void computeLightLanes(const Light& light, const SurfaceLanes& s, LightLanes& out) {

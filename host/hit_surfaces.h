@@ -15,9 +15,9 @@ namespace gridrt {
 
 constexpr int kSurfaceLanes = 16;
 
-// What shading needs from a triangle, made once per scene: its first vertex, its edges
-// and their dot products (the barycentrics of a point), the vertex normals (zero when the
-// scene has none) and the unit geometric normal.
+// What interpolating a triangle's vertex normals needs, made once per scene: its first
+// vertex, its edges and their dot products (the barycentrics of a point), the vertex
+// normals, and the unit geometric normal (read from here too: one place per hit).
 struct ShadingTriangle {
   glm::vec3 v0, e1, e2;
   float d11, d12, d22, det;  // e1.e1, e1.e2, e2.e2, d11 d22 - d12^2
@@ -30,21 +30,25 @@ inline float dot3(float ax, float ay, float az, float bx, float by, float bz) {
   return ax * bx + ay * by + az * bz;
 }
 
-// The surface at one hit: the hit point p = o + t d; the shading normal n (interpolated
-// vertex normals when smooth, else the geometric normal) and the geometric normal g, both
-// turned to the side the ray came from; backface: the ray hit the side g pointed away
-// from. Inline: computeSurfaces runs it in vector lanes.
+// The surface at one hit: the hit point p = o + t d; the shading normal n (kSmooth: the
+// interpolated vertex normals of *smooth; else the geometric normal) and the geometric
+// normal g (unit, the triangle's), both turned to the side the ray came from; backface:
+// the ray hit the side g pointed away from. Inline: computeSurfaces runs it in vector
+// lanes.
 struct HitSurface {
   float px, py, pz, nx, ny, nz, gx, gy, gz;
   bool backface;
 };
 
-inline HitSurface surfaceAt(const ShadingTriangle& tri, bool smooth, float ox, float oy,
-                            float oz, float dx, float dy, float dz, float t) {
+template <bool kSmooth>
+inline HitSurface surfaceAt(const ShadingTriangle* smooth, glm::vec3 geometric, float ox,
+                            float oy, float oz, float dx, float dy, float dz, float t) {
   HitSurface h;
   h.px = ox + t * dx, h.py = oy + t * dy, h.pz = oz + t * dz;
-  float nx = tri.geometric.x, ny = tri.geometric.y, nz = tri.geometric.z;
-  if (smooth) {
+  const float gx = geometric.x, gy = geometric.y, gz = geometric.z;
+  float nx = gx, ny = gy, nz = gz;
+  if constexpr (kSmooth) {
+    const ShadingTriangle& tri = *smooth;
     // Barycentrics of p in the file's vertex order (the kernels' u, v refer to the
     // canonical order of prepareTriangles); a degenerate triangle weighs all three alike.
     const float wx = h.px - tri.v0.x, wy = h.py - tri.v0.y, wz = h.pz - tri.v0.z;
@@ -60,16 +64,17 @@ inline HitSurface surfaceAt(const ShadingTriangle& tri, bool smooth, float ox, f
     const float len = std::sqrt(dot3(sx, sy, sz, sx, sy, sz));
     if (len > 0.0f) nx = sx / len, ny = sy / len, nz = sz / len;
   }
-  h.backface = dot3(tri.geometric.x, tri.geometric.y, tri.geometric.z, dx, dy, dz) > 0.0f;
-  h.gx = h.backface ? -tri.geometric.x : tri.geometric.x;
-  h.gy = h.backface ? -tri.geometric.y : tri.geometric.y;
-  h.gz = h.backface ? -tri.geometric.z : tri.geometric.z;
+  h.backface = dot3(gx, gy, gz, dx, dy, dz) > 0.0f;
+  h.gx = h.backface ? -gx : gx;
+  h.gy = h.backface ? -gy : gy;
+  h.gz = h.backface ? -gz : gz;
   if (dot3(nx, ny, nz, h.gx, h.gy, h.gz) < 0.0f) nx = -nx, ny = -ny, nz = -nz;
   h.nx = nx, h.ny = ny, h.nz = nz;
   return h;
 }
 
-// One per triangle of `scene` (geometric_normals: the renderer's, one per triangle).
+// One per triangle of `scene` (geometric_normals: one per triangle); none when it has no
+// vertex normals (then a hit needs only its geometric normal).
 std::vector<ShadingTriangle> makeShadingTriangles(const Scene& scene,
                                                   const std::vector<glm::vec3>& geometric_normals);
 
@@ -85,8 +90,9 @@ struct SurfaceLanes {
   alignas(64) int backface[kSurfaceLanes];
 };
 
-// Fills the outputs of `s` from its inputs. smooth: interpolate the vertex normals.
-void computeSurfaces(const ShadingTriangle* triangles, bool smooth, SurfaceLanes& s);
+// Fills the outputs of `s` from its inputs: surfaceAt in every lane (triangles: the
+// scene's shading triangles, null without vertex normals; geometric: its unit normals).
+void computeSurfaces(const ShadingTriangle* triangles, const glm::vec3* geometric, SurfaceLanes& s);
 
 // One light seen from the 16 hit points: lightIrradiance's direction, distance and
 // irradiance, cos_theta = n . to_light, and lit: the light is in front of both normals

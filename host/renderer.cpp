@@ -454,8 +454,12 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       }
       const GrRay& ray = rays[i];
       if (settings_.primary_only) {  // headlight shading: one hit at a time is enough
-        const HitSurface h = surfaceAt(shading_triangles_[hit.prim], !scene_.normals.empty(),
-                                       ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
+        const HitSurface h =
+            shading_triangles_.empty()
+                ? surfaceAt<false>(nullptr, geometric_normals_[hit.prim], ray.ox, ray.oy,
+                                   ray.oz, ray.dx, ray.dy, ray.dz, hit.t)
+                : surfaceAt<true>(&shading_triangles_[hit.prim], geometric_normals_[hit.prim],
+                                  ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
         const glm::vec3& base = scene_.materials[scene_.material_of[hit.prim]].base_color;
         local[i] = path.weight * base *
                    std::fabs(glm::dot(glm::vec3(h.nx, h.ny, h.nz), glm::vec3(ray.dx, ray.dy, ray.dz)));
@@ -475,7 +479,8 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       lanes.dx[k] = lanes.dx[0], lanes.dy[k] = lanes.dy[0], lanes.dz[k] = lanes.dz[0];
       lanes.t[k] = lanes.t[0], lanes.tri[k] = lanes.tri[0];
     }
-    computeSurfaces(shading_triangles_.data(), !scene_.normals.empty(), lanes);
+    computeSurfaces(shading_triangles_.empty() ? nullptr : shading_triangles_.data(),
+                    geometric_normals_.data(), lanes);
     for (size_t l = 0; l < lights_.size(); ++l)
       computeLightLanes(lights_[l], lanes, out.light_lanes[l]);
   for (int k = 0; k < count; ++k) {

@@ -78,6 +78,7 @@ TEST_P(HitSurfaces, LanesEqualTheOneHitShadingBitForBit) {
     geometric[i] = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
   }
   const std::vector<ShadingTriangle> shading = makeShadingTriangles(scene, geometric);
+  ASSERT_EQ(shading.size(), smooth ? size_t(triangles) : 0u);
 
   std::vector<Light> lights(5);
   lights[0].type = LightType::Point;
@@ -109,7 +110,7 @@ TEST_P(HitSurfaces, LanesEqualTheOneHitShadingBitForBit) {
       s.t[k] = dist(rng);
       if (block == 0 && k == 0) s.ox[k] = s.oy[k] = s.oz[k] = s.t[k] = 0.0f;  // on light 4
     }
-    computeSurfaces(shading.data(), smooth, s);
+    computeSurfaces(smooth ? shading.data() : nullptr, geometric.data(), s);
     for (int k = 0; k < kSurfaceLanes; ++k) {
       const int t = s.tri[k];
       OneHit h = oneHit(&scene.positions[3 * t], smooth ? &scene.normals[3 * t] : nullptr,
