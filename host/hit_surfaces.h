@@ -83,7 +83,7 @@ struct SurfaceLanes {
   alignas(64) float ox[kSurfaceLanes], oy[kSurfaceLanes], oz[kSurfaceLanes];
   alignas(64) float dx[kSurfaceLanes], dy[kSurfaceLanes], dz[kSurfaceLanes];
   alignas(64) float t[kSurfaceLanes];
-  alignas(64) int tri[kSurfaceLanes];  // a lane without a hit names any valid triangle
+  alignas(64) int tri[kSurfaceLanes];  // lanes past a block's hits copy lane 0
   alignas(64) float px[kSurfaceLanes], py[kSurfaceLanes], pz[kSurfaceLanes];
   alignas(64) float nx[kSurfaceLanes], ny[kSurfaceLanes], nz[kSurfaceLanes];
   alignas(64) float gx[kSurfaceLanes], gy[kSurfaceLanes], gz[kSurfaceLanes];
