@@ -26,7 +26,9 @@ SurfaceTerms surfaceTerms(const Material& m);
 // Irradiance (per unit area facing the light) that `light` delivers at `p`, the unit
 // direction towards the light and its distance (infinite for a directional light).
 // Point/spot: intensity / d^2 (candela), spot cone smooth falloff and range window as
-// KHR_lights_punctual recommends; directional: intensity (lux).
+// KHR_lights_punctual recommends; directional: intensity (lux). The one-hit definition:
+// the shading loop computes it 16 hits at a time (computeLightLanes, hit_surfaces.h),
+// bit for bit equal (tests/hit_surfaces_test.cpp).
 glm::vec3 lightIrradiance(const Light& light, const glm::vec3& p, glm::vec3& to_light,
                           float& distance);
 

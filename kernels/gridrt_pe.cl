@@ -1,9 +1,9 @@
 /* GridRT processing elements (Nery et al., Sections III and V): one work-group runs one
  * task of one PE (a non-empty voxel). Its work-items test the task's rays, 16 per
  * work-item in float16 lanes read from one packet of pair planes (GR_PAIR_*), against the
- * voxel's triangles. Phase 1 of the reduction
- * happens here: each (ray, PE) pair keeps only its closest hit that lies INSIDE the voxel
- * (t_enter <= t <= t_exit), written to the pair's slot of the ray's traversal list.
+ * voxel's triangles. Phase 1 of the reduction happens here: each (ray, PE) pair keeps
+ * only its closest hit that lies INSIDE the voxel (t_enter <= t <= t_exit), written to
+ * the pair's slot of the ray's traversal list.
  * Phase 2 (first PE in list order with a hit wins) runs on the host.
  *
  * INTERRUPT emulates the paper's interrupt chain: a PE skips a ray once a PE earlier in
