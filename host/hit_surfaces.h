@@ -94,6 +94,14 @@ struct SurfaceLanes {
 // scene's shading triangles, null without vertex normals; geometric: its unit normals).
 void computeSurfaces(const ShadingTriangle* triangles, const glm::vec3* geometric, SurfaceLanes& s);
 
+// surfaceAt for one hit of triangle `tri` (triangles and geometric as for computeSurfaces).
+inline HitSurface surfaceOfHit(const ShadingTriangle* triangles, const glm::vec3* geometric,
+                               int tri, float ox, float oy, float oz, float dx, float dy,
+                               float dz, float t) {
+  return triangles ? surfaceAt<true>(&triangles[tri], geometric[tri], ox, oy, oz, dx, dy, dz, t)
+                   : surfaceAt<false>(nullptr, geometric[tri], ox, oy, oz, dx, dy, dz, t);
+}
+
 // One light seen from the 16 hit points: lightIrradiance's direction, distance and
 // irradiance, cos_theta = n . to_light, and lit: the light is in front of both normals
 // and gives some irradiance (else the hit gets nothing from it and no shadow ray).

@@ -418,6 +418,9 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   // Chunks handed out dynamically: the rays' cost varies across the image (background,
   // walls, mirror and glass), so a static split leaves one core waiting.
   const size_t chunks = (n + kShadeChunkRays - 1) / kShadeChunkRays;
+  // Null without vertex normals (hit_surfaces.h).
+  const ShadingTriangle* smooth_triangles =
+      shading_triangles_.empty() ? nullptr : shading_triangles_.data();
   if (spawned_.size() < chunks) spawned_.resize(chunks);
 
 #pragma omp parallel for schedule(dynamic, 1)
@@ -426,7 +429,7 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   out.shadow_count = 0;
   out.ray_count = 0;
   out.light_lanes.resize(lights_.size());
-  SurfaceLanes& lanes = out.surfaces;
+  SurfaceLanes lanes;
   const size_t chunk_begin = size_t(chunk) * kShadeChunkRays;
   const size_t chunk_end = std::min(n, chunk_begin + kShadeChunkRays);
   // The primary generation in its shading order: sample `sample` of the pixel at
@@ -454,12 +457,8 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       }
       const GrRay& ray = rays[i];
       if (settings_.primary_only) {  // headlight shading: one hit at a time is enough
-        const HitSurface h =
-            shading_triangles_.empty()
-                ? surfaceAt<false>(nullptr, geometric_normals_[hit.prim], ray.ox, ray.oy,
-                                   ray.oz, ray.dx, ray.dy, ray.dz, hit.t)
-                : surfaceAt<true>(&shading_triangles_[hit.prim], geometric_normals_[hit.prim],
-                                  ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
+        const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim,
+                                          ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
         const glm::vec3& base = scene_.materials[scene_.material_of[hit.prim]].base_color;
         local[i] = path.weight * base *
                    std::fabs(glm::dot(glm::vec3(h.nx, h.ny, h.nz), glm::vec3(ray.dx, ray.dy, ray.dz)));
@@ -479,8 +478,7 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       lanes.dx[k] = lanes.dx[0], lanes.dy[k] = lanes.dy[0], lanes.dz[k] = lanes.dz[0];
       lanes.t[k] = lanes.t[0], lanes.tri[k] = lanes.tri[0];
     }
-    computeSurfaces(shading_triangles_.empty() ? nullptr : shading_triangles_.data(),
-                    geometric_normals_.data(), lanes);
+    computeSurfaces(smooth_triangles, geometric_normals_.data(), lanes);
     for (size_t l = 0; l < lights_.size(); ++l)
       computeLightLanes(lights_[l], lanes, out.light_lanes[l]);
   for (int k = 0; k < count; ++k) {

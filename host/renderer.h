@@ -188,8 +188,7 @@ class Renderer {
     std::vector<GrRay> rays;
     std::vector<PathRay> paths;  // as many as rays
     size_t ray_count = 0;
-    SurfaceLanes surfaces;                 // scratch: one block of 16 hits
-    std::vector<LightLanes> light_lanes;   // ... and each light seen from them
+    std::vector<LightLanes> light_lanes;  // scratch: each light seen from a block of 16 hits
   };
   // One depth's arrays, kept from frame to frame, so each keeps about the size it had in
   // the last frame: growing a std::vector zero-fills its new part, which one set shared
