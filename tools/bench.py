@@ -24,6 +24,8 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SHARED = os.path.join(os.path.dirname(ROOT), "shared", "scenes")
 GRIDRT = os.path.join(ROOT, "build", "gridrt")
+# Embree 3 on the same rays, built where Embree is installed (tools/embree_peer.cpp).
+EMBREE_PEER = os.path.join(ROOT, "build", "tools", "embree_peer")
 
 # The paper's PE counts and the grids that give them (Nery et al., Tables III/IV).
 PAPER_GRIDS = [(1, "1,1,1"), (2, "2,1,1"), (4, "2,2,1"), (8, "2,2,2"), (12, "3,2,2"),
@@ -231,8 +233,40 @@ TARGETS = [
 ]
 
 
+# Embree's variants of a target: its single-ray and 16-ray packet paths on both cores.
+EMBREE_VARIANTS = [("embree 1-ray", 1), ("embree 16-ray packets", 16)]
+
+
+def run_peer(args, frames, packet, extra=()):
+    """embree_peer on a gridrt-style argument list (scene, --width, --height)."""
+    out = subprocess.run([EMBREE_PEER, *args, "--threads", "2", "--packet", str(packet),
+                          "--frames", str(frames), *extra],
+                         check=True, capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+def run_peer_median(args, frames, packet, runs):
+    import statistics
+    results = [run_peer(args, frames, packet) for _ in range(runs)]
+    s = dict(results[0])
+    for key in ("frame_ms", "mrays_per_s", "build_ms"):
+        s[key] = statistics.median(r[key] for r in results)
+    return s
+
+
+def peer_row(label, s, **extra):
+    r = {"label": label, "accel": f"embree packet {s['packet']}", "triangles": s["triangles"],
+         "rays": s["rays"], "frame_ms": s["frame_ms"], "mrays_per_s": s["mrays_per_s"],
+         "build_ms": s["build_ms"]}
+    r.update(extra)
+    return r
+
+
 def bench_targets(frames):
     rows = []
+    peer = os.path.exists(EMBREE_PEER)
+    if not peer:
+        print(f"no {EMBREE_PEER} (tools/setup.sh --bench builds it): Embree columns left out")
     for label, key, args in TARGETS:
         for variant, extra in [("gridrt", []), ("gridrt --pe-interrupt", ["--pe-interrupt"]),
                                ("dda", ["--accel", "dda"])]:
@@ -241,6 +275,65 @@ def bench_targets(frames):
             rows.append(row(f"{label} [{variant}]", s, target=label, variant=variant, value=value))
             print(f"target {label:52s} {variant:22s}: {value:8.2f}  (frame {s['frame_ms']:.2f} ms)",
                   flush=True)
+        if not peer or key == "fps":  # Embree traces rays; it has no Whitted renderer here
+            continue
+        for variant, packet in EMBREE_VARIANTS:
+            s = run_peer_median([a for a in args if a != "--primary-only"], frames, packet,
+                                TARGET_RUNS)
+            value = s[key]
+            rows.append(peer_row(f"{label} [{variant}]", s, target=label, variant=variant,
+                                 value=value))
+            print(f"target {label:52s} {variant:22s}: {value:8.2f}  (trace {s['frame_ms']:.2f} ms)",
+                  flush=True)
+    return rows + accuracy_rows(peer)
+
+
+# The accuracy beside the speed: per scene (320x240 camera rays), the pixels whose
+# triangle differs from the exact double-precision host reference (--accel reference),
+# and the largest difference in hit distance among them (0: a tie between triangles at
+# the same distance, e.g. duplicate faces; larger: a different surface).
+ACCURACY_SCENES = ["bunny_res4.glb", "bunny.glb"]
+ACCURACY_TARGET = "pixels whose triangle differs from the exact reference (320x240)"
+
+
+def primary_aovs(tmp, name, runner):
+    """(primid, depth) arrays of one renderer, runner(primid_path, depth_path) making them."""
+    import numpy as np
+    import OpenImageIO as oiio
+    pid, depth = os.path.join(tmp, f"{name}_pid.exr"), os.path.join(tmp, f"{name}_depth.exr")
+    runner(pid, depth)
+    read = lambda p: np.asarray(oiio.ImageBuf(p).get_pixels(oiio.FLOAT))[..., 0]
+    return read(pid), read(depth)
+
+
+def accuracy_rows(peer):
+    import numpy as np
+    rows = []
+    for scene in ACCURACY_SCENES:
+        args = [os.path.join(SHARED, scene), "--width", "320", "--height", "240"]
+
+        def gridrt(extra):
+            return lambda pid, depth: subprocess.run(
+                [GRIDRT, *args, "--primary-only", "-q", "-o", pid + ".png", "--aov",
+                 f"primid={pid}", "--aov", f"depth={depth}", *extra], check=True)
+
+        variants = [("gridrt", gridrt([])), ("gridrt --pe-interrupt", gridrt(["--pe-interrupt"])),
+                    ("dda", gridrt(["--accel", "dda"]))]
+        if peer:
+            variants += [(v, lambda pid, depth, packet=packet: run_peer(
+                args, 5, packet, ["--primid", pid, "--depth", depth])) for v, packet in EMBREE_VARIANTS]
+        with tempfile.TemporaryDirectory() as tmp:
+            ref_pid, ref_depth = primary_aovs(tmp, "reference", gridrt(["--accel", "reference"]))
+            for variant, runner in variants:
+                pid, depth = primary_aovs(tmp, variant.replace(" ", "_"), runner)
+                differ = pid != ref_pid
+                dt = float(np.abs(depth - ref_depth)[differ].max()) if differ.any() else 0.0
+                rows.append({"label": f"{scene} accuracy [{variant}]", "target": ACCURACY_TARGET,
+                             "variant": variant, "scene": scene, "value": int(differ.sum()),
+                             "max_depth_difference": dt, "pixels": int(differ.size)})
+                print(f"accuracy {scene:15s} {variant:22s}: {int(differ.sum()):6d} of "
+                      f"{differ.size} pixels differ from the reference (max |dt| {dt:.3g})",
+                      flush=True)
     return rows
 
 
@@ -248,17 +341,33 @@ def chart_targets(rows, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    targets = list(dict.fromkeys(r["target"] for r in rows))
-    fig, axes = plt.subplots(1, len(targets), figsize=(4 * len(targets), 4))
+    speed = [r for r in rows if r["target"] != ACCURACY_TARGET]
+    accuracy = [r for r in rows if r["target"] == ACCURACY_TARGET]
+    targets = list(dict.fromkeys(r["target"] for r in speed))
+    fig, axes = plt.subplots(1, len(targets) + 1, figsize=(4 * (len(targets) + 1), 4.4))
     for ax, target in zip(axes, targets):
-        sub = [r for r in rows if r["target"] == target]
-        ax.bar([r["variant"] for r in sub], [r["value"] for r in sub])
+        sub = [r for r in speed if r["target"] == target]
+        ax.bar([r["variant"] for r in sub], [r["value"] for r in sub],
+               color=["C1" if r["variant"].startswith("embree") else "C0" for r in sub])
         goal = float(target.split("(")[-1].split()[-1].rstrip(")"))
         ax.axhline(goal, color="red", ls="--", label=f"target {goal:g}")
         ax.set_title(target, fontsize=8)
-        ax.tick_params(axis="x", labelsize=7, rotation=20)
+        ax.tick_params(axis="x", labelsize=7, rotation=30)
         ax.legend(fontsize=7)
-    fig.suptitle(machine_line(), fontsize=8)
+    ax = axes[-1]
+    variants = list(dict.fromkeys(r["variant"] for r in accuracy))
+    scenes = list(dict.fromkeys(r["scene"] for r in accuracy))
+    width = 0.8 / max(1, len(scenes))
+    for k, scene in enumerate(scenes):
+        values = {r["variant"]: r["value"] for r in accuracy if r["scene"] == scene}
+        ax.bar([i + k * width for i in range(len(variants))],
+               [values.get(v, 0) for v in variants], width, label=scene)
+    ax.set_xticks([i + width * (len(scenes) - 1) / 2 for i in range(len(variants))])
+    ax.set_xticklabels(variants, fontsize=7, rotation=30)
+    ax.set_title("accuracy: " + ACCURACY_TARGET, fontsize=8)
+    ax.set_ylabel("pixels (of 76,800)")
+    ax.legend(fontsize=7)
+    fig.suptitle(machine_line() + "; Embree traces only (no ray generation or shading)", fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 

@@ -2,8 +2,9 @@
 # Sets GridRT up on a Debian machine: installs the Debian packages that are missing
 # (as root, or through sudo; otherwise prints the exact command to run), then configures
 # a Release build in build/ and builds the renderer, tools and tests.
-# With --bench it also sets up the benchmark harness's Python packages (matplotlib,
-# numpy, OpenImageIO from PyPI into .venv/, via tools/setup_python.sh).
+# With --bench it also sets up the benchmark harness: its Python packages (matplotlib,
+# numpy, OpenImageIO from PyPI into .venv/, via tools/setup_python.sh) and Embree 3
+# (Debian's libembree-dev), the peer tools/bench.py measures beside GridRT.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -22,6 +23,7 @@ PACKAGES=(
   libgtest-dev libcli11-dev nlohmann-json3-dev
   python3 python3-venv
 )
+if [ "$bench" -eq 1 ]; then PACKAGES+=(libembree-dev); fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do
