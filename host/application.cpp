@@ -213,7 +213,8 @@ std::unique_ptr<Intersector> makeIntersector(const Options& o, ClRuntime& runtim
     return std::make_unique<BruteIntersector>(runtime, triangles, kernel);
   if (o.accel == AccelKind::Reference) return std::make_unique<ReferenceIntersector>(scene);
   if (o.accel == AccelKind::Dda) return std::make_unique<DdaIntersector>(runtime, grid, kernel);
-  auto g = std::make_unique<GridRtIntersector>(runtime, grid, o.pe_interrupt, kernel);
+  auto g = std::make_unique<GridRtIntersector>(
+      runtime, grid, o.pe_interrupt ? PeInterrupt::AllRays : PeInterrupt::CameraRays, kernel);
   gridrt = g.get();
   return g;
 }
@@ -342,7 +343,9 @@ int runApplication(const Options& o) {
     stats["pe_load"] = {{"rays_mean", rays_pe.mean / frames}, {"rays_max", rays_pe.max / frames},
                         {"tests_mean", tests_pe.mean / frames},
                         {"tests_max", tests_pe.max / frames}};
-    stats["interrupt"] = {{"enabled", o.pe_interrupt}, {"skipped_pairs", c.skipped_pairs}};
+    stats["interrupt"] = {{"camera_rays", true},
+                          {"all_rays", o.pe_interrupt},
+                          {"skipped_pairs", c.skipped_pairs}};
   }
   if (!o.stats_json.empty()) writeJsonFile(o.stats_json, stats);
   if (o.stats) std::cout << formatStatisticsTable(stats);

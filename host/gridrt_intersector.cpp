@@ -28,7 +28,8 @@ int popcount(int bits) { return __builtin_popcount(unsigned(bits)); }
 
 }  // namespace
 
-GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid, bool interrupt,
+GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid,
+                                     PeInterrupt interrupt,
                                      const KernelOptions& kernel_options)
     : rt_(runtime), grid_(grid), interrupt_(interrupt) {
   const std::string defines =
@@ -57,7 +58,7 @@ void GridRtIntersector::runPes(size_t n, size_t slots, HitMode mode) {
     tasks_.upload(rt_, tasks);
     slot_hits_dev_.reserve(rt_, slots);
     first_hit_key_.reserve(rt_, n);
-    if (interrupt_)
+    if (allInterrupt())
       rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, n * sizeof(int));
     kernel_.setArg(0, tasks_.get());
     kernel_.setArg(1, entries_.get());
@@ -66,7 +67,7 @@ void GridRtIntersector::runPes(size_t n, size_t slots, HitMode mode) {
     kernel_.setArg(4, slot_hits_dev_.get());
     kernel_.setArg(5, first_hit_key_.get());
     kernel_.setArg(6, mode == HitMode::AnyHit ? 1 : 0);
-    kernel_.setArg(7, interrupt_ ? 1 : 0);
+    kernel_.setArg(7, allInterrupt() ? 1 : 0);
     kernel_.setArg(8, seg_planes_.get());
     kernel_.setArg(9, seg_stride_);
     rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
@@ -192,10 +193,11 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
 void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vector<GrRay>& rays,
                                          std::vector<GrHit>& hits, RayDiagnostics* diagnostics) {
   Stopwatch clock;
-  bundleCameraRays(grid_, view, camera_bundles_, interrupt_, camera_scratch_);
+  bundleCameraRays(grid_, view, camera_bundles_, cameraInterrupt(), camera_scratch_);
   counters_.lists_ms += clock.ms();
   const GrCullFrame frame = cullFrameOf(view);
-  intersectBundles(rays, camera_bundles_, HitMode::Closest, hits, diagnostics, &frame);
+  intersectBundles(rays, camera_bundles_, HitMode::Closest, cameraInterrupt(), hits, diagnostics,
+                   &frame);
 }
 
 void GridRtIntersector::intersectTowardsPoint(const glm::vec3& point,
@@ -212,7 +214,7 @@ void GridRtIntersector::intersectTowardsPoint(const glm::vec3& point,
     intersect(rays, mode, hits, nullptr);
     return;
   }
-  intersectBundles(rays, light_bundles_, mode, hits, nullptr);
+  intersectBundles(rays, light_bundles_, mode, allInterrupt(), hits, nullptr);
 }
 
 GrCullFrame GridRtIntersector::prepareCulling(bool allowed, const GrCullFrame& frame,
@@ -236,7 +238,7 @@ void GridRtIntersector::generateAndIntersectPrimary(const PinholeView& view,
     return;
   }
   Stopwatch clock;
-  bundleCameraRays(grid_, view, camera_bundles_, interrupt_, camera_scratch_);
+  bundleCameraRays(grid_, view, camera_bundles_, cameraInterrupt(), camera_scratch_);
   counters_.lists_ms += clock.ms();
   const GrCullFrame frame = cullFrameOf(view);
   const PixelWindow& w = view.window;
@@ -276,11 +278,12 @@ void GridRtIntersector::generateAndIntersectPrimary(const PinholeView& view,
     differing = 0;
     uncovered = u;
   };
-  intersectBundles(rays, camera_bundles_, HitMode::Closest, hits, diagnostics, &frame, &fill);
+  intersectBundles(rays, camera_bundles_, HitMode::Closest, cameraInterrupt(), hits, diagnostics,
+                   &frame, &fill);
 }
 
 void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const RayBundles& bundles,
-                                         HitMode mode, std::vector<GrHit>& hits,
+                                         HitMode mode, bool interrupt, std::vector<GrHit>& hits,
                                          RayDiagnostics* diagnostics,
                                          const GrCullFrame* cull_frame, const PlaneFill* fill) {
   const size_t n = rays.size();
@@ -365,7 +368,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     const size_t result_floats = 4 * lanes + 4 * packets;
     results_.reserve(rt_, result_floats);
     first_hit_key_.reserve(rt_, stride);
-    if (interrupt_)
+    if (interrupt)
       rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, stride * sizeof(int));
     cl::Kernel& k = bundle_kernel_;
     k.setArg(0, bundle_tasks_.get());
@@ -382,7 +385,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     k.setArg(arg++, int(lanes));
     k.setArg(arg++, first_hit_key_.get());
     k.setArg(arg++, mode == HitMode::AnyHit ? 1 : 0);
-    k.setArg(arg++, interrupt_ ? 1 : 0);
+    k.setArg(arg++, interrupt ? 1 : 0);
     const GrCullFrame culling =
         prepareCulling(check_cover && uncovered == 0 && common_origin, frame, common);
     packet_culling_used_ = culling.enabled != 0.0f;

@@ -102,7 +102,8 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
                  "lambda of the auto resolution R_i = d_i*cbrt(lambda*N/V)")
       ->capture_default_str()->check(CLI::Range(0.001f, 1000.0f));
   app.add_flag("--pe-interrupt", o.pe_interrupt,
-               "gridrt: a PE skips rays already hit by an earlier PE (the paper's interrupt)");
+               "gridrt: in every batch a PE skips rays an earlier PE has hit (the paper's "
+               "interrupt; camera rays always use it)");
   app.add_flag("--primary-only", o.primary_only,
                "primary rays only, headlight shading (the paper's measurement)");
   app.add_option("--aov", raw.aovs,

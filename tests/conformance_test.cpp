@@ -48,8 +48,9 @@ class Conformance : public ::testing::Test {
       UniformGrid grid = buildUniformGrid(tris, bounds, settings);
       std::string where = label + " grid " + std::to_string(grid.info.nx) + "x" +
                           std::to_string(grid.info.ny) + "x" + std::to_string(grid.info.nz);
-      GridRtIntersector gridrt(*runtime_, grid, false);
-      GridRtIntersector interrupt(*runtime_, grid, true);
+      GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
+      GridRtIntersector interrupt(*runtime_, grid, PeInterrupt::AllRays);
+      GridRtIntersector camera_interrupt(*runtime_, grid, PeInterrupt::CameraRays);
       DdaIntersector dda(*runtime_, grid);
       gridrt.intersect(rays, HitMode::Closest, got, nullptr);
       EXPECT_EQ(test::hitMismatches(want, got, where + " gridrt"), 0u);
@@ -60,6 +61,8 @@ class Conformance : public ::testing::Test {
         EXPECT_EQ(test::hitMismatches(want, got, where + " gridrt camera path"), 0u);
         interrupt.intersectPrimary(*view, rays, got, nullptr);
         EXPECT_EQ(test::hitMismatches(want, got, where + " gridrt-interrupt camera path"), 0u);
+        camera_interrupt.intersectPrimary(*view, rays, got, nullptr);
+        EXPECT_EQ(test::hitMismatches(want, got, where + " camera-interrupt camera path"), 0u);
       }
       dda.intersect(rays, HitMode::Closest, got, nullptr);
       EXPECT_EQ(test::hitMismatches(want, got, where + " dda"), 0u);
@@ -144,10 +147,10 @@ class Conformance : public ::testing::Test {
                               std::to_string(grid.info.nx) + "x" + std::to_string(grid.info.ny) +
                               "x" + std::to_string(grid.info.nz);
           // As the renderer calls it: small batches fall back to the lists.
-          GridRtIntersector plain(*runtime_, grid, false);
+          GridRtIntersector plain(*runtime_, grid, PeInterrupt::Off);
           plain.intersectTowardsPoint(light, rays, HitMode::Closest, got);
           EXPECT_EQ(test::hitMismatches(want, got, where + " towards the light"), 0u);
-          GridRtIntersector gridrt(*runtime_, grid, false);
+          GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
           gridrt.forceLightBundles();
           gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
           EXPECT_EQ(test::hitMismatches(want, got, where + " light bundles"), 0u);
@@ -244,7 +247,7 @@ TEST_F(Conformance, CameraPathWithPacketCullingFromInsideAndGrazing) {
     const auto tris = prepareTriangles(scene, options);
     BruteIntersector brute(*runtime_, tris, options);
     const UniformGrid grid = buildUniformGrid(tris, b, GridSettings{});
-    GridRtIntersector gridrt(*runtime_, grid, false, options);
+    GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, options);
     for (size_t k = 0; k < std::size(cameras); ++k) {
       std::vector<GrRay> rays;
       for (int j = 0; j < h; ++j)
@@ -285,7 +288,7 @@ TEST_F(Conformance, CameraPathThatMakesItsRaysMatchesBrute) {
   const auto tris = prepareTriangles(scene);
   BruteIntersector brute(*runtime_, tris);
   const UniformGrid grid = buildUniformGrid(tris, b, GridSettings{});
-  GridRtIntersector gridrt(*runtime_, grid, false);
+  GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
   size_t hits = 0;
   for (size_t k = 0; k < std::size(cameras); ++k) {
     for (const PixelWindow& window : windows) {
@@ -402,7 +405,7 @@ TEST_F(Conformance, BigTriangleWhoseHitLiesInALaterVoxelLosesToACloserSmallOne) 
                              ray({0.05f, 0.05f, 1.0f}, {0.01f, 0.0f, -1})};
   expectAllAgree(tris, b, rays, {dims(1, 1, 4), dims(3, 3, 3), dims(1, 1, 16)}, "big");
   UniformGrid grid = buildUniformGrid(tris, b, dims(1, 1, 4));
-  GridRtIntersector gridrt(*runtime_, grid, false);
+  GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
   std::vector<GrHit> hits;
   gridrt.intersect(rays, HitMode::Closest, hits, nullptr);
   EXPECT_EQ(hits[0].prim, 1);
@@ -442,7 +445,7 @@ TEST_F(Conformance, TriangleInAVoxelBoundaryPlaneIsFoundFromBothSides) {
   }
   expectAllAgree(tris, b, rays, {dims(4, 4, 4), dims(1, 1, 2), dims(8, 8, 8)}, "plane");
   UniformGrid grid = buildUniformGrid(tris, b, dims(4, 4, 4));
-  GridRtIntersector gridrt(*runtime_, grid, false);
+  GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
   std::vector<GrHit> hits;
   gridrt.intersect(rays, HitMode::Closest, hits, nullptr);
   for (const auto& h : hits) EXPECT_EQ(h.prim, 2);
@@ -495,7 +498,7 @@ size_t lightBundleMismatches(ClRuntime& runtime, const std::vector<GrTriangle>& 
   settings.automatic = false;
   settings.dims = dims;
   UniformGrid grid = buildUniformGrid(tris, boundsOf(tris), settings);
-  GridRtIntersector gridrt(runtime, grid, false);
+  GridRtIntersector gridrt(runtime, grid, PeInterrupt::Off);
   gridrt.forceLightBundles();
   gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
   return test::hitMismatches(want, got, "light bundles");
@@ -551,7 +554,7 @@ TEST_F(Conformance, EmptyGridMissesEverything) {
   Bounds b{glm::vec3(0), glm::vec3(1)};
   UniformGrid grid = buildUniformGrid(tris, b, dims(3, 3, 3));
   EXPECT_EQ(grid.peCount(), 0);
-  GridRtIntersector gridrt(*runtime_, grid, false);
+  GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
   DdaIntersector dda(*runtime_, grid);
   std::vector<GrRay> rays = randomRays(b, 100, 9);
   std::vector<GrHit> hits;

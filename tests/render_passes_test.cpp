@@ -27,7 +27,7 @@ class RenderPasses : public test::DefaultSceneTest {
   // end (uniform sampling: one; adaptive: the pixel centres, then the refinement); -1 if
   // a call went down within a scale or a scale stopped short of its end.
   Frame render(const RenderSettings& settings, const Camera& camera, int* scales = nullptr) {
-    GridRtIntersector gridrt(*runtime_, grid_, false);
+    GridRtIntersector gridrt(*runtime_, grid_, PeInterrupt::Off);
     Renderer renderer(scene_, camera, gridrt, settings);
     Frame frame;
     int last = 0, last_total = 0, climbed = 0;

@@ -164,7 +164,7 @@ TEST_F(SegmentCullingKernels, WhittedFramesOfTheDefaultSceneEqualBrute) {
       GridSettings grid_settings;
       grid_settings.density = density;
       const UniformGrid grid = buildUniformGrid(tris, sceneBounds(scene), grid_settings);
-      GridRtIntersector gridrt(*runtime_, grid, false, options);
+      GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, options);
       const std::vector<float> got = render(gridrt);
       size_t differ = 0;
       for (size_t k = 0; k < want.size(); ++k) differ += want[k] != got[k];

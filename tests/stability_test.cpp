@@ -57,7 +57,7 @@ class Stability : public ::testing::Test {
     gs.automatic = false;
     gs.dims = {16, 16, 16};
     UniformGrid grid = buildUniformGrid(tris, sceneBounds(scene), gs);
-    GridRtIntersector gridrt(*runtime_, grid, false, ko);
+    GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, ko);
     DdaIntersector dda(*runtime_, grid, ko);
     ReferenceIntersector ref(scene);
     std::vector<GrHit> want, got, exact;
@@ -195,7 +195,7 @@ TEST_F(Stability, DegenerateTrianglesAreNeverHit) {
     auto tri_data = prepareTriangles(scene, KernelOptions{wt});
     UniformGrid grid = buildUniformGrid(tri_data, sceneBounds(scene), GridSettings{});
     BruteIntersector brute(*runtime_, tri_data, KernelOptions{wt});
-    GridRtIntersector gridrt(*runtime_, grid, false, KernelOptions{wt});
+    GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, KernelOptions{wt});
     std::vector<GrHit> h, g;
     brute.intersect(rays, HitMode::Closest, h, nullptr);
     gridrt.intersect(rays, HitMode::Closest, g, nullptr);
@@ -253,7 +253,7 @@ TEST_F(Stability, LoaderDropsNanAndInfTrianglesSoTheGridNeverSeesThem) {
   UniformGrid grid = buildUniformGrid(tris, sceneBounds(s), GridSettings{});
   EXPECT_GE(grid.peCount(), 1);
   // NaN and Inf rays: no crash, no hit.
-  GridRtIntersector gridrt(*runtime_, grid, false);
+  GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
   std::vector<GrRay> rays = {{NAN, 0, 1, 0, 0, 0, -1, kInf}, {0.2f, 0.2f, 1, 0, NAN, 0, -1, kInf},
                              {0.2f, 0.2f, kInf, 0, 0, 0, -1, kInf}};
   std::vector<GrHit> hits;

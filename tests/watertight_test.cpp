@@ -336,7 +336,7 @@ TEST_F(Watertight, GridIntersectorsAgreeWithBruteOnEdgeAndVertexRays) {
     s.automatic = false;
     s.dims = {n, n, n};
     UniformGrid grid = buildUniformGrid(tris, sceneBounds(scene), s);
-    GridRtIntersector gridrt(*runtime_, grid, false, watertight);
+    GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, watertight);
     DdaIntersector dda(*runtime_, grid, watertight);
     gridrt.intersect(rays, HitMode::Closest, got, nullptr);
     EXPECT_EQ(test::hitMismatches(want, got, "gridrt " + std::to_string(n)), 0u);
@@ -354,7 +354,7 @@ TEST_F(Watertight, BunnyEdgesAndVerticesLeakOnlyWithMollerTrumbore) {
   auto rays = raysOf(aimed);
   UniformGrid grid = buildUniformGrid(tris, sceneBounds(scene), GridSettings{});
   UniformGrid wgrid = buildUniformGrid(wtris, sceneBounds(scene), GridSettings{});
-  GridRtIntersector mt(*runtime_, grid, false), wt(*runtime_, wgrid, false, watertight);
+  GridRtIntersector mt(*runtime_, grid, PeInterrupt::Off), wt(*runtime_, wgrid, PeInterrupt::Off, watertight);
   DdaIntersector dda(*runtime_, wgrid, watertight);
   std::vector<GrHit> mt_hits, wt_hits, dda_hits;
   mt.intersect(rays, HitMode::Closest, mt_hits, nullptr);
