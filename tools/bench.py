@@ -364,7 +364,7 @@ def chart_targets(rows, path):
                [values.get(v, 0) for v in variants], width, label=scene)
     ax.set_xticks([i + width * (len(scenes) - 1) / 2 for i in range(len(variants))])
     ax.set_xticklabels(variants, fontsize=7, rotation=30)
-    ax.set_title("accuracy: " + ACCURACY_TARGET, fontsize=8)
+    ax.set_title("accuracy: " + ACCURACY_TARGET.replace(" from", "\nfrom"), fontsize=8)
     ax.set_ylabel("pixels (of 76,800)")
     ax.legend(fontsize=7)
     fig.suptitle(machine_line() + "; Embree traces only (no ray generation or shading)", fontsize=8)
