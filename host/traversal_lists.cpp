@@ -18,12 +18,12 @@ void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t co
   if (lists.scratch.size() < chunks) lists.scratch.resize(chunks);
   lists.begin.resize(count + 1);
   lists.begin[0] = 0;
-  // Lane-major room for 16 rays' lists: a ray visits fewer than nx + ny + nz voxels.
+  // Lane-major room for a packet's lists: a ray visits fewer than nx + ny + nz voxels.
   const GrGridInfo& g = grid.info;
   const int stride = g.nx + g.ny + g.nz;
-  if (kDdaPacketAvailable) {
+  if (kDdaPacketLanes > 0) {
     lists.packet_scratch.resize(omp_get_max_threads());
-    for (auto& s : lists.packet_scratch) s.resize(16 * size_t(stride));
+    for (auto& s : lists.packet_scratch) s.resize(kDdaPacketLanes * size_t(stride));
   }
 #pragma omp parallel for schedule(dynamic, 1)
   for (long long chunk = 0; chunk < (long long)chunks; ++chunk) {
@@ -31,12 +31,12 @@ void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t co
     out.clear();
     const size_t first = size_t(chunk) * kListChunkRays;
     const size_t last = std::min(count, first + kListChunkRays);
-    if (kDdaPacketAvailable) {
+    if (kDdaPacketLanes > 0) {
       ListEntry* lanes = lists.packet_scratch[omp_get_thread_num()].data();
-      int found[16];
-      for (size_t r = first; r < last; r += 16) {
-        const int n = int(std::min<size_t>(16, last - r));
-        ddaPacket16(g, grid.pe_of_voxel.data(), rays + r, n, lanes, stride, found);
+      int found[kDdaPacketLanes > 0 ? kDdaPacketLanes : 1];
+      for (size_t r = first; r < last; r += kDdaPacketLanes) {
+        const int n = int(std::min<size_t>(kDdaPacketLanes, last - r));
+        ddaPacket(g, grid.pe_of_voxel.data(), rays + r, n, lanes, stride, found);
         for (int k = 0; k < n; ++k) {
           out.insert(out.end(), lanes + size_t(k) * stride, lanes + size_t(k) * stride + found[k]);
           lists.begin[r + k + 1] = found[k];  // a count for now
