@@ -1,9 +1,10 @@
 // The 3D-DDA of kernels/shared/grid_dda.h for a packet of rays at once, one per vector
-// lane (16 with AVX-512, 8 with AVX2), for the traversal lists. Every lane does what gr_dda_begin and gr_dda_step do for its ray,
-// operation for operation in the same order and with the same comparisons, so the voxels
-// and their intervals are the scalar walk's bit for bit (TraversalLists tests compare
-// them). The scalar walk branches on the axis to step at every voxel, a branch the CPU
-// mispredicts about every other time; the lanes select it with masks instead.
+// lane (16 with AVX-512, 8 with AVX2), for the traversal lists. Every lane does what
+// gr_dda_begin and gr_dda_step do for its ray, operation for operation in the same order
+// and with the same comparisons, so the voxels and their intervals are the scalar walk's
+// bit for bit (TraversalLists tests compare them). The scalar walk branches on the axis
+// to step at every voxel, a branch the CPU mispredicts about every other time; the lanes
+// select it with masks instead.
 #pragma once
 #include "gridrt_types.h"
 #include "traversal_lists.h"
