@@ -17,6 +17,8 @@
 #include <embree3/rtcore.h>
 #include <omp.h>
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -41,41 +43,32 @@ struct PeerOptions {
   int width = 320, height = 240, threads = 2, packet = 1, frames = 7;
 };
 
-[[noreturn]] void usage(const std::string& problem) {
-  std::cerr << "embree_peer: " << problem
-            << " (usage: embree_peer SCENE --width W --height H [--threads T] "
-               "[--packet 1|8|16] [--frames N] [--primid OUT.exr] [--depth OUT.exr])\n";
-  std::exit(2);
-}
-
-int positiveInt(const std::string& flag, const char* text) {
-  char* end = nullptr;
-  long value = std::strtol(text, &end, 10);
-  if (*end != '\0' || value < 1 || value > 1 << 20) usage(flag + " needs a positive integer");
-  return int(value);
-}
-
+// The options through CLI11, as gridrt parses its own; a bad one is one line on stderr
+// and exit code 2, --help prints the usage and exits 0.
 PeerOptions parse(int argc, char** argv) {
   PeerOptions o;
-  for (int k = 1; k < argc; ++k) {
-    const std::string arg = argv[k];
-    if (arg.rfind("--", 0) != 0) {
-      o.scene = arg;
-      continue;
-    }
-    if (k + 1 >= argc) usage(arg + " needs a value");
-    const char* value = argv[++k];
-    if (arg == "--width") o.width = positiveInt(arg, value);
-    else if (arg == "--height") o.height = positiveInt(arg, value);
-    else if (arg == "--threads") o.threads = positiveInt(arg, value);
-    else if (arg == "--frames") o.frames = positiveInt(arg, value);
-    else if (arg == "--packet") o.packet = positiveInt(arg, value);
-    else if (arg == "--primid") o.primid_path = value;
-    else if (arg == "--depth") o.depth_path = value;
-    else usage("unknown option " + arg);
+  CLI::App app{"Embree 3 on gridrt's camera rays (tools/bench.py)", "embree_peer"};
+  app.add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
+  app.add_option("--width", o.width, "image width")->check(CLI::Range(1, 65536));
+  app.add_option("--height", o.height, "image height")->check(CLI::Range(1, 65536));
+  app.add_option("--threads", o.threads, "OpenMP and Embree threads")->check(CLI::Range(1, 1024));
+  app.add_option("--packet", o.packet, "rays per rtcIntersect call")
+      ->check(CLI::IsMember({1, 8, 16}));
+  app.add_option("--frames", o.frames, "timed frames after a warm-up")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--primid", o.primid_path, "write each pixel's triangle (.exr)");
+  app.add_option("--depth", o.depth_path, "write each pixel's hit distance (.exr)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    std::exit(0);
+  } catch (const CLI::ParseError& e) {
+    std::string what = e.what();
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    std::cerr << "embree_peer: " << what << " (see embree_peer --help)\n";
+    std::exit(2);
   }
-  if (o.scene.empty()) usage("no scene given");
-  if (o.packet != 1 && o.packet != 8 && o.packet != 16) usage("--packet must be 1, 8 or 16");
   return o;
 }
 
