@@ -246,12 +246,9 @@ def run_peer(args, frames, packet, extra=()):
 
 
 def run_peer_median(args, frames, packet, runs):
-    import statistics
+    """run_peer() in `runs` separate processes, times their medians (as run_median)."""
     results = [run_peer(args, frames, packet) for _ in range(runs)]
-    s = dict(results[0])
-    for key in ("frame_ms", "mrays_per_s", "build_ms"):
-        s[key] = statistics.median(r[key] for r in results)
-    return s
+    return medians(results, ("frame_ms", "mrays_per_s", "build_ms"))
 
 
 def peer_row(label, s, **extra):
