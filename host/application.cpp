@@ -171,6 +171,7 @@ RenderSettings renderSettings(const Options& o) {
 // Per-frame timings of the timed frames, and the intersector counters of the first.
 struct FrameTimings {
   std::vector<double> frame_ms, kernel_ms, shade_ms, lists_ms, reduce_ms, intersect_ms;
+  std::vector<double> primary_ms, secondary_ms, shadow_ms;  // intersect_ms by ray kind
   IntersectCounters first_frame_counters;
 };
 
@@ -193,7 +194,10 @@ FrameTimings renderFrames(const Options& o, Renderer& renderer, Intersector& int
     }
     t.frame_ms.push_back(frame.times.frame_ms);
     t.shade_ms.push_back(frame.times.shade_ms);
-    t.intersect_ms.push_back(frame.times.intersect_ms);
+    t.intersect_ms.push_back(frame.times.intersectMs());
+    t.primary_ms.push_back(frame.times.primary_ms);
+    t.secondary_ms.push_back(frame.times.secondary_ms);
+    t.shadow_ms.push_back(frame.times.shadow_ms);
     t.kernel_ms.push_back(after.kernel_ms - before.kernel_ms);
     t.lists_ms.push_back(after.lists_ms - before.lists_ms);
     t.reduce_ms.push_back(after.reduce_ms - before.reduce_ms);
@@ -314,6 +318,17 @@ int runApplication(const Options& o) {
   stats["kernel_ms"] = median(t.kernel_ms);
   stats["reduce_ms"] = median(t.reduce_ms);
   stats["intersect_ms"] = median(t.intersect_ms);
+  // The tracing time by ray kind, with what a ray of each kind cost (each a median).
+  auto perRay = [](double ms, uint64_t rays) { return rays ? ms * 1e6 / double(rays) : 0.0; };
+  const double primary_ms = median(t.primary_ms), secondary_ms = median(t.secondary_ms),
+               shadow_ms = median(t.shadow_ms);
+  stats["trace"] = {
+      {"primary_ms", primary_ms},
+      {"secondary_ms", secondary_ms},
+      {"shadow_ms", shadow_ms},
+      {"primary_ns_per_ray", perRay(primary_ms, frame.rays.primary)},
+      {"secondary_ns_per_ray", perRay(secondary_ms, frame.rays.reflection + frame.rays.refraction)},
+      {"shadow_ns_per_ray", perRay(shadow_ms, frame.rays.shadow)}};
   stats["shade_ms"] = median(t.shade_ms);
   stats["generate_ms"] = frame.times.generate_ms;  // primary rays of the last frame
   stats["frame_ms"] = median_frame;

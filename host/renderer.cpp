@@ -330,10 +330,11 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
     }
     RayDiagnostics* diag = first && aov_pass && settings_.want_diagnostics ? &diagnostics : nullptr;
     std::vector<GrHit>& hits = generations_[depth].hits;
+    double& trace_ms = first ? frame.times.primary_ms : frame.times.secondary_ms;
     if (first && traced_primary)
-      tracePrimary(*window, hits, diag, frame.times.intersect_ms);
+      tracePrimary(*window, hits, diag, trace_ms);
     else
-      traceBatched(*rays, HitMode::Closest, hits, diag, frame.times.intersect_ms);
+      traceBatched(*rays, HitMode::Closest, hits, diag, trace_ms);
     if (first && aov_pass && (settings_.want_aovs || settings_.want_diagnostics))
       fillPrimaryAovs(frame.aovs, hits, diagnostics, spp);
     shadow_total += shadeGeneration(depth, *rays, paths, primary, shadow_total, frame);
@@ -349,7 +350,7 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   shadow_rays_.resize(shadow_total);
   shadows_.resize(shadow_total);
   frame.rays.shadow += shadow_total;
-  if (shadow_total) traceShadows(frame.times.intersect_ms);
+  if (shadow_total) traceShadows(frame.times.shadow_ms);
   clock.restart();
   addPassRadiance(depths, primary);
   frame.times.shade_ms += clock.ms();

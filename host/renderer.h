@@ -66,7 +66,11 @@ struct PrimaryAovs {
 };
 
 struct FrameTimes {
-  double generate_ms = 0, intersect_ms = 0, shade_ms = 0, frame_ms = 0;
+  double generate_ms = 0, shade_ms = 0, frame_ms = 0;
+  // Tracing, by the kind of ray traced: camera rays, reflection and refraction rays (all
+  // bounces), shadow rays.
+  double primary_ms = 0, secondary_ms = 0, shadow_ms = 0;
+  double intersectMs() const { return primary_ms + secondary_ms + shadow_ms; }
 };
 
 struct Frame {

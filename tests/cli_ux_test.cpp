@@ -1,10 +1,13 @@
 // The command line's conveniences: the progress bar (only on a terminal), --crop parsing,
-// --device by plain index, and the quick refusal of absurd image sizes.
+// --device by plain index, the quick refusal of absurd image sizes, and the tracing time
+// split by ray kind in --stats-json.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -139,6 +142,47 @@ TEST(Devices, IndexPastTheTableIsAUsageError) {
     EXPECT_EQ(r.exit_code, 2) << spec << ": " << r.err;
     EXPECT_NE(r.err.find("unknown device"), std::string::npos) << r.err;
   }
+}
+
+// --- statistics -----------------------------------------------------------------------------
+
+nlohmann::json renderStats(const std::string& name, std::vector<std::string> extra) {
+  const std::string json = tempPath(name + ".json");
+  std::vector<std::string> argv{gridrtBinary(), "--width", "64", "--height", "48", "-q",
+                                "-o", tempPath(name + ".png"), "--stats-json", json};
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  CommandResult r = runCommand(argv);
+  EXPECT_EQ(r.exit_code, 0) << joinArgs(argv) << "\n" << r.err;
+  std::ifstream in(json);
+  return nlohmann::json::parse(in, nullptr, false);
+}
+
+TEST(Statistics, TracingTimeSplitsByRayKind) {
+  if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
+  // The default scene's mirror and glass spawn secondary rays; its light, shadow rays.
+  const nlohmann::json all = renderStats("stats_all", {});
+  ASSERT_TRUE(all.contains("trace")) << all.dump();
+  const nlohmann::json& t = all["trace"];
+  EXPECT_GT(t["primary_ms"].get<double>(), 0.0);
+  EXPECT_GT(t["secondary_ms"].get<double>(), 0.0);
+  EXPECT_GT(t["shadow_ms"].get<double>(), 0.0);
+  EXPECT_NEAR(t["primary_ms"].get<double>() + t["secondary_ms"].get<double>() +
+                  t["shadow_ms"].get<double>(),
+              all["intersect_ms"].get<double>(), 1e-9);
+  const double secondary_rays = all["rays"]["reflection"].get<double>() +
+                                all["rays"]["refraction"].get<double>();
+  EXPECT_NEAR(t["secondary_ns_per_ray"].get<double>(),
+              t["secondary_ms"].get<double>() * 1e6 / secondary_rays, 1e-6);
+
+  // No bounces: no secondary time; headlight shading: no shadow rays either.
+  const nlohmann::json flat = renderStats("stats_depth0", {"--max-depth", "0"});
+  EXPECT_EQ(flat["trace"]["secondary_ms"].get<double>(), 0.0);
+  EXPECT_EQ(flat["trace"]["secondary_ns_per_ray"].get<double>(), 0.0);
+  EXPECT_GT(flat["trace"]["shadow_ms"].get<double>(), 0.0);
+  const nlohmann::json primary = renderStats("stats_primary", {"--primary-only"});
+  EXPECT_EQ(primary["trace"]["shadow_ms"].get<double>(), 0.0);
+  EXPECT_EQ(primary["trace"]["secondary_ms"].get<double>(), 0.0);
+  EXPECT_GT(primary["trace"]["primary_ms"].get<double>(), 0.0);
 }
 
 }  // namespace
