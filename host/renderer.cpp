@@ -410,18 +410,45 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
                                  size_t shadow_offset, Frame& frame) {
   Stopwatch clock;
   const size_t n = rays.size();
-  const bool spawn = !settings_.primary_only && depth < settings_.max_depth;
   // Each chunk writes its own outputs (Spawned), which keeps the parallel loop free of
   // shared appends; they are concatenated afterwards in chunk order, the shading order.
   Generation& g = generations_[depth];
   g.radiance.resize(n);
   std::vector<glm::vec3>& local = g.radiance;
-  // Chunks handed out dynamically: the rays' cost varies across the image (background,
-  // walls, mirror and glass), so a static split leaves one core waiting.
-  const size_t chunks = (n + kShadeChunkRays - 1) / kShadeChunkRays;
   // Null without vertex normals (hit_surfaces.h).
   const ShadingTriangle* smooth_triangles =
       shading_triangles_.empty() ? nullptr : shading_triangles_.data();
+  if (settings_.primary_only) {
+    // Headlight shading (the paper's measurement): the primary generation only, in ray
+    // order, each hit its base colour times |n . d|; no lights, no spawned rays. One plain
+    // loop: the general loop's per-ray bookkeeping (paths, shading order, blocks of 16)
+    // cost more than this shading does.
+    const glm::vec3 weight(primary.weight);
+#pragma omp parallel for schedule(static)
+    for (long long i = 0; i < (long long)n; ++i) {
+      const GrHit& hit = g.hits[i];
+      if (hit.prim < 0) {
+        local[i] = weight * settings_.background;
+        continue;
+      }
+      const GrRay& ray = rays[i];
+      const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim,
+                                        ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
+      const glm::vec3& base = scene_.materials[scene_.material_of[hit.prim]].base_color;
+      local[i] = weight * base *
+                 std::fabs(glm::dot(glm::vec3(h.nx, h.ny, h.nz), glm::vec3(ray.dx, ray.dy, ray.dz)));
+    }
+    frame.times.shade_ms += clock.ms();
+    g.first_shadow = shadow_offset;
+    g.shadow_count = 0;
+    generations_[depth + 1].rays.clear();
+    generations_[depth + 1].paths.clear();
+    return 0;
+  }
+  const bool spawn = depth < settings_.max_depth;
+  // Chunks handed out dynamically: the rays' cost varies across the image (background,
+  // walls, mirror and glass), so a static split leaves one core waiting.
+  const size_t chunks = (n + kShadeChunkRays - 1) / kShadeChunkRays;
   if (spawned_.size() < chunks) spawned_.resize(chunks);
 
 #pragma omp parallel for schedule(dynamic, 1)
@@ -457,14 +484,6 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
         continue;
       }
       const GrRay& ray = rays[i];
-      if (settings_.primary_only) {  // headlight shading: one hit at a time is enough
-        const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim,
-                                          ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
-        const glm::vec3& base = scene_.materials[scene_.material_of[hit.prim]].base_color;
-        local[i] = path.weight * base *
-                   std::fabs(glm::dot(glm::vec3(h.nx, h.ny, h.nz), glm::vec3(ray.dx, ray.dy, ray.dz)));
-        continue;
-      }
       const int k = count++;
       block_ray[k] = i;
       block_path[k] = path;
