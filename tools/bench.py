@@ -42,7 +42,11 @@ def run(args, frames):
                "--stats-json", stats]
         subprocess.run(cmd, check=True)
         with open(stats) as f:
-            return json.load(f)
+            s = json.load(f)
+    # The tracing time by ray kind, flattened (trace_primary_ms, ...) so medians() takes it.
+    for key, value in s.get("trace", {}).items():
+        s["trace_" + key] = value
+    return s
 
 
 def row(label, s, **extra):
@@ -183,7 +187,12 @@ def run_median(args, frames, runs):
     for r in results:
         r["fps"] = 1000.0 / r["frame_ms"]
     return medians(results, ("frame_ms", "fps", "lists_ms", "kernel_ms", "reduce_ms", "shade_ms",
-                             "build_ms", "mrays_per_s"))
+                             "build_ms", "mrays_per_s") + TRACE_KEYS)
+
+
+# The tracing time by ray kind (stats "trace"): milliseconds a frame and nanoseconds a ray.
+RAY_KINDS = ("primary", "secondary", "shadow")
+TRACE_KEYS = tuple(f"trace_{kind}_{unit}" for kind in RAY_KINDS for unit in ("ms", "ns_per_ray"))
 
 
 def bench_whitted(frames):
@@ -192,9 +201,10 @@ def bench_whitted(frames):
                          ("bunny", [os.path.join(SHARED, "bunny.glb")])]:
         s = run_median(scene + ["--width", "640", "--height", "480", "--max-depth", "5"], frames,
                        TARGET_RUNS)
-        rows.append(row(label, s, fps=1000.0 / s["frame_ms"]))
+        rows.append(row(label, s, fps=1000.0 / s["frame_ms"], **{k: s[k] for k in TRACE_KEYS}))
+        per_ray = ", ".join(f"{kind} {s[f'trace_{kind}_ns_per_ray']:.0f}" for kind in RAY_KINDS)
         print(f"whitted {label:14s}: {s['frame_ms']:8.2f} ms = {1000 / s['frame_ms']:6.1f} fps, "
-              f"{s['rays']['total']} rays", flush=True)
+              f"{s['rays']['total']} rays; ns a ray traced: {per_ray}", flush=True)
     return rows
 
 
@@ -202,7 +212,7 @@ def chart_whitted(rows, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(8, 4.5))
+    fig, (ax, kinds) = plt.subplots(1, 2, figsize=(12, 4.5))
     phases = ["lists_ms", "kernel_ms", "reduce_ms", "shade_ms"]
     bottom = [0.0] * len(rows)
     for p in phases:
@@ -213,6 +223,14 @@ def chart_whitted(rows, path):
                label="frame")
     ax.set(ylabel="ms per frame (640x480, max depth 5)", title="Whitted frames: time per phase")
     ax.legend(fontsize=8)
+    # What one ray of each kind cost to trace (lists, kernel and phase 2 together).
+    width = 0.8 / len(RAY_KINDS)
+    for k, kind in enumerate(RAY_KINDS):
+        kinds.bar([i + (k - 1) * width for i in range(len(rows))],
+                  [r[f"trace_{kind}_ns_per_ray"] for r in rows], width, label=kind)
+    kinds.set_xticks(range(len(rows)), [r["label"] for r in rows])
+    kinds.set(ylabel="ns per ray traced", title="Tracing cost by ray kind")
+    kinds.legend(fontsize=8)
     fig.suptitle(machine_line(), fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
