@@ -29,6 +29,7 @@
 
 #include "camera_rays.h"
 #include "errors.h"
+#include "frame_statistics.h"
 #include "gltf_loader.h"
 #include "image_output.h"
 #include "prepared_triangles.h"
@@ -193,8 +194,7 @@ int run(const PeerOptions& o) {
     else tracePackets<16>(rtc_scene, rays, o.width, o.height, prim, depth);
     if (f > 0) frame_ms.push_back(clock.ms());
   }
-  std::sort(frame_ms.begin(), frame_ms.end());
-  const double median = frame_ms[frame_ms.size() / 2];
+  const double frame_median = median(frame_ms);
   const long long hits = std::count_if(prim.begin(), prim.end(), [](int p) { return p >= 0; });
   if (!o.primid_path.empty()) {
     std::vector<float> ids(prim.begin(), prim.end());
@@ -205,8 +205,8 @@ int run(const PeerOptions& o) {
   rtcReleaseDevice(device);
   std::printf("{\"build_ms\": %.4f, \"frame_ms\": %.4f, \"mrays_per_s\": %.4f, \"rays\": %zu, "
               "\"hits\": %lld, \"threads\": %d, \"packet\": %d, \"triangles\": %zu}\n",
-              build_ms, median, rays.size() / (median * 1e3), rays.size(), hits, o.threads,
-              o.packet, scene.triangleCount());
+              build_ms, frame_median, rays.size() / (frame_median * 1e3), rays.size(), hits,
+              o.threads, o.packet, scene.triangleCount());
   return 0;
 }
 
