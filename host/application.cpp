@@ -358,8 +358,8 @@ int runApplication(const Options& o) {
     stats["pe_load"] = {{"rays_mean", rays_pe.mean / frames}, {"rays_max", rays_pe.max / frames},
                         {"tests_mean", tests_pe.mean / frames},
                         {"tests_max", tests_pe.max / frames}};
-    stats["interrupt"] = {{"camera_rays", true},
-                          {"all_rays", o.pe_interrupt},
+    stats["interrupt"] = {{"camera_rays", gridrt->cameraInterrupt()},
+                          {"all_rays", gridrt->allInterrupt()},
                           {"skipped_pairs", c.skipped_pairs}};
   }
   if (!o.stats_json.empty()) writeJsonFile(o.stats_json, stats);

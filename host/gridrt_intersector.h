@@ -55,7 +55,7 @@ class GridRtIntersector : public Intersector {
   GridRtIntersector(const GridRtIntersector&) = delete;
   GridRtIntersector& operator=(const GridRtIntersector&) = delete;
   std::string name() const override {
-    return interrupt_ == PeInterrupt::AllRays ? "gridrt-interrupt" : "gridrt";
+    return allInterrupt() ? "gridrt-interrupt" : "gridrt";
   }
   void intersect(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                  RayDiagnostics* diagnostics) override;
@@ -76,6 +76,9 @@ class GridRtIntersector : public Intersector {
                              HitMode mode, std::vector<GrHit>& hits) override;
   // Tests send every light batch through the bundles, whatever its size and shape.
   void forceLightBundles() { force_light_bundles_ = true; }
+  // Which batches run with the interrupt chain.
+  bool cameraInterrupt() const { return interrupt_ != PeInterrupt::Off; }
+  bool allInterrupt() const { return interrupt_ == PeInterrupt::AllRays; }
   // Whether the last bundle batch ran with packet culling (for tests).
   bool packetCullingUsed() const { return packet_culling_used_; }
 
@@ -91,8 +94,6 @@ class GridRtIntersector : public Intersector {
   ClRuntime& rt_;
   const UniformGrid& grid_;
   PeInterrupt interrupt_;
-  bool cameraInterrupt() const { return interrupt_ != PeInterrupt::Off; }
-  bool allInterrupt() const { return interrupt_ == PeInterrupt::AllRays; }
   cl::Kernel kernel_;
   TraversalLists lists_;
   PeBins bins_;
