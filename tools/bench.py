@@ -208,6 +208,16 @@ def bench_whitted(frames):
     return rows
 
 
+def grouped_bars(ax, groups, series):
+    """One bar per (label, values) series in each group, side by side, centred on the
+    group's tick."""
+    width = 0.8 / max(1, len(series))
+    for k, (label, values) in enumerate(series):
+        offset = (k - (len(series) - 1) / 2) * width
+        ax.bar([i + offset for i in range(len(groups))], values, width, label=label)
+    ax.set_xticks(range(len(groups)), groups)
+
+
 def chart_whitted(rows, path):
     import matplotlib
     matplotlib.use("Agg")
@@ -224,11 +234,8 @@ def chart_whitted(rows, path):
     ax.set(ylabel="ms per frame (640x480, max depth 5)", title="Whitted frames: time per phase")
     ax.legend(fontsize=8)
     # What one ray of each kind cost to trace (lists, kernel and phase 2 together).
-    width = 0.8 / len(RAY_KINDS)
-    for k, kind in enumerate(RAY_KINDS):
-        kinds.bar([i + (k - 1) * width for i in range(len(rows))],
-                  [r[f"trace_{kind}_ns_per_ray"] for r in rows], width, label=kind)
-    kinds.set_xticks(range(len(rows)), [r["label"] for r in rows])
+    grouped_bars(kinds, [r["label"] for r in rows],
+                 [(kind, [r[f"trace_{kind}_ns_per_ray"] for r in rows]) for kind in RAY_KINDS])
     kinds.set(ylabel="ns per ray traced", title="Tracing cost by ray kind")
     kinds.legend(fontsize=8)
     fig.suptitle(machine_line(), fontsize=8)
@@ -372,13 +379,12 @@ def chart_targets(rows, path):
     ax = axes[-1]
     variants = list(dict.fromkeys(r["variant"] for r in accuracy))
     scenes = list(dict.fromkeys(r["scene"] for r in accuracy))
-    width = 0.8 / max(1, len(scenes))
-    for k, scene in enumerate(scenes):
+    series = []
+    for scene in scenes:
         values = {r["variant"]: r["value"] for r in accuracy if r["scene"] == scene}
-        ax.bar([i + k * width for i in range(len(variants))],
-               [values.get(v, 0) for v in variants], width, label=scene)
-    ax.set_xticks([i + width * (len(scenes) - 1) / 2 for i in range(len(variants))])
-    ax.set_xticklabels(variants, fontsize=7, rotation=30)
+        series.append((scene, [values.get(v, 0) for v in variants]))
+    grouped_bars(ax, variants, series)
+    ax.tick_params(axis="x", labelsize=7, rotation=30)
     ax.set_title("accuracy: " + ACCURACY_TARGET.replace(" from", "\nfrom"), fontsize=8)
     ax.set_ylabel("pixels (of 76,800)")
     ax.legend(fontsize=7)
