@@ -14,8 +14,6 @@ namespace gridrt {
 
 namespace {
 
-constexpr int kSkipped = -2;  // prim of a slot the interrupt skipped (kernels/gridrt_pe.cl)
-
 // Maps `count` elements of a device buffer into host memory (no copy on a CPU device).
 // Non-blocking: the pointer is usable once the enclosing runWithHostThreadsAsleep returns.
 template <typename T>
@@ -25,6 +23,38 @@ T* mapBuffer(ClRuntime& rt, cl::Buffer& buffer, cl_map_flags flags, size_t count
 }
 
 int popcount(int bits) { return __builtin_popcount(unsigned(bits)); }
+
+// Phase 1's results of one batch as the host reads them (GR_RESULT_*, gridrt_types.h).
+struct PacketResults {
+  const float *t = nullptr, *u = nullptr, *v = nullptr;
+  const int *prim = nullptr, *ray = nullptr;  // ray: the list kernel's only
+  const GrPacketMasks* masks = nullptr;
+  PacketResults(const float* results, size_t lanes, int planes) {
+    if (!results) return;
+    t = results + GR_RESULT_T * lanes;
+    prim = reinterpret_cast<const int*>(results + GR_RESULT_PRIM * lanes);
+    u = results + GR_RESULT_U * lanes;
+    v = results + GR_RESULT_V * lanes;
+    if (planes > GR_RESULT_RAY) ray = reinterpret_cast<const int*>(results + GR_RESULT_RAY * lanes);
+    masks = reinterpret_cast<const GrPacketMasks*>(results + size_t(planes) * lanes);
+  }
+  // Phase 2's rule, for both paths: a ray keeps the smallest (t, prim) over its PEs'
+  // in-voxel hits. Hits lie in their own voxels, disjoint intervals of the ray, so this is
+  // the hit of the first PE in the ray's list that has one (the paper's rule); on an exact
+  // tie at a shared boundary the lower triangle index wins, as for every intersector.
+  // Equal (t, prim) from two PEs (one hit on their shared boundary) is the same hit: the
+  // lower PE is named the winner (winner may be null).
+  void keepNearer(size_t lane, int pe, GrHit& best, int* winner) const {
+    const float hit_t = t[lane];
+    const int hit_prim = prim[lane];
+    const bool same = hit_t == best.t && hit_prim == best.prim;
+    if (hit_t < best.t || (hit_t == best.t && hit_prim < best.prim) ||
+        (same && winner && pe < *winner)) {
+      best = GrHit{hit_t, hit_prim, u[lane], v[lane]};
+      if (winner) *winner = pe;
+    }
+  }
+};
 
 }  // namespace
 
@@ -49,14 +79,16 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
   tests_per_pe_.assign(grid.peCount(), 0);
 }
 
-void GridRtIntersector::runPes(size_t n, size_t slots, HitMode mode) {
+void GridRtIntersector::runPes(size_t n, HitMode mode) {
   const std::vector<GrPeTask>& tasks = bins_.tasks;
+  const size_t lanes = bins_.packets * kPeLanes;
+  const size_t result_floats = GR_LIST_RESULT_PLANES * lanes + 4 * bins_.packets;
   rt_.runWithHostThreadsAsleep([&] {
     enqueueUnmaps();
     enqueueEntriesUnmap();
     if (tasks.empty()) return;
     tasks_.upload(rt_, tasks);
-    slot_hits_dev_.reserve(rt_, slots);
+    results_.reserve(rt_, result_floats);
     first_hit_key_.reserve(rt_, n);
     if (allInterrupt())
       rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, n * sizeof(int));
@@ -64,17 +96,17 @@ void GridRtIntersector::runPes(size_t n, size_t slots, HitMode mode) {
     kernel_.setArg(1, entries_.get());
     kernel_.setArg(2, pe_tri_begin_.get());
     kernel_.setArg(3, pe_triangles_.get());
-    kernel_.setArg(4, slot_hits_dev_.get());
-    kernel_.setArg(5, first_hit_key_.get());
-    kernel_.setArg(6, mode == HitMode::AnyHit ? 1 : 0);
-    kernel_.setArg(7, allInterrupt() ? 1 : 0);
-    kernel_.setArg(8, seg_planes_.get());
-    kernel_.setArg(9, seg_stride_);
+    kernel_.setArg(4, results_.get());
+    kernel_.setArg(5, int(lanes));
+    kernel_.setArg(6, first_hit_key_.get());
+    kernel_.setArg(7, mode == HitMode::AnyHit ? 1 : 0);
+    kernel_.setArg(8, allInterrupt() ? 1 : 0);
+    kernel_.setArg(9, seg_planes_.get());
+    kernel_.setArg(10, seg_stride_);
     rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
                                      cl::NDRange(tasks.size() * kPeLocalSize),
                                      cl::NDRange(kPeLocalSize));
-    slot_hits_ = static_cast<const GrHit*>(rt_.queue().enqueueMapBuffer(
-        slot_hits_dev_.get(), CL_FALSE, CL_MAP_READ, 0, slots * sizeof(GrHit)));
+    results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
     // Mapped again for the next batch's pairs once the kernel has read them.
     entries_map_ = mapBuffer<float>(rt_, entries_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
                                     entries_.capacity());
@@ -82,7 +114,7 @@ void GridRtIntersector::runPes(size_t n, size_t slots, HitMode mode) {
 }
 
 GridRtIntersector::~GridRtIntersector() {
-  if (!slot_hits_ && !results_map_ && !planes_map_ && !entries_map_) return;
+  if (!results_map_ && !planes_map_ && !entries_map_) return;
   try {
     rt_.runWithHostThreadsAsleep([&] {
       enqueueUnmaps();
@@ -95,11 +127,8 @@ GridRtIntersector::~GridRtIntersector() {
 }
 
 void GridRtIntersector::enqueueUnmaps() {
-  if (slot_hits_)
-    rt_.queue().enqueueUnmapMemObject(slot_hits_dev_.get(), const_cast<GrHit*>(slot_hits_));
   if (results_map_)
     rt_.queue().enqueueUnmapMemObject(results_.get(), const_cast<float*>(results_map_));
-  slot_hits_ = nullptr;
   results_map_ = nullptr;
 }
 
@@ -147,46 +176,64 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   counters_.lists_ms += clock.ms();
 
   clock.restart();
-  const size_t slots = lists_.entries.size();
-  runPes(n, slots, mode);
+  runPes(n, mode);
   counters_.kernel_ms += clock.ms();
 
-  // Phase 2: walk each ray's list nearest first; the first PE holding a hit wins.
+  // Phase 2: per ray, the smallest (t, prim) over its PEs' in-voxel hits
+  // (PacketResults::keepNearer). Each thread owns a range of rays and picks their lanes
+  // out of the packets' hit (and skip) masks; the tests are counted per task.
   clock.restart();
   if (diagnostics) {
     diagnostics->tests.assign(n, 0);
     diagnostics->winning_pe.assign(n, -1);
     diagnostics->list_length.assign(n, 0);
   }
+  const PacketResults results(results_map_, bins_.packets * kPeLanes, GR_LIST_RESULT_PLANES);
+  const std::vector<GrPeTask>& tasks = bins_.tasks;
   uint64_t tests = 0, skipped = 0, longest = 0;
-#pragma omp parallel for schedule(static) reduction(+ : tests, skipped) reduction(max : longest)
-  for (long long r = 0; r < (long long)n; ++r) {
-    GrHit best{rays[r].tmax, -1, 0.0f, 0.0f};
-    int winner = -1, ray_tests = 0;
-    for (int s = lists_.begin[r]; s < lists_.begin[r + 1]; ++s) {
-      const GrHit& h = slot_hits_[s];
-      int pe = lists_.entries[s].pe;
-      if (h.prim == kSkipped) {
-        ++skipped;
-        continue;
-      }
-      ray_tests += grid_.triangleCountOfPe(pe);
-      if (winner < 0 && h.prim >= 0) {
-        best = h;
-        winner = pe;
+#pragma omp parallel reduction(+ : tests, skipped) reduction(max : longest)
+  {
+    const int me = omp_get_thread_num(), count = omp_get_num_threads();
+    const long long lo = (long long)(n * me / count), hi = (long long)(n * (me + 1) / count);
+    for (long long r = lo; r < hi; ++r) {
+      hits[r] = GrHit{rays[r].tmax, -1, 0.0f, 0.0f};
+      const int length = lists_.lengthOf(r);
+      longest = std::max<uint64_t>(longest, uint64_t(length));
+      if (diagnostics) {
+        diagnostics->list_length[r] = length;
+        int ray_tests = 0;
+        for (int s = lists_.begin[r]; s < lists_.begin[r + 1]; ++s)
+          ray_tests += grid_.triangleCountOfPe(lists_.entries[s].pe);
+        diagnostics->tests[r] = ray_tests;  // less its skipped pairs, below
       }
     }
-    hits[r] = best;
-    tests += ray_tests;
-    longest = std::max<uint64_t>(longest, lists_.lengthOf(r));
-    if (diagnostics) {
-      diagnostics->tests[r] = ray_tests;
-      diagnostics->winning_pe[r] = winner;
-      diagnostics->list_length[r] = lists_.lengthOf(r);
+    for (size_t k = 0; k < tasks.size(); ++k) {
+      const GrPeTask& task = tasks[k];
+      const int cost = grid_.triangleCountOfPe(task.pe);
+      const int packets = (task.pair_count + kPeLanes - 1) / kPeLanes;
+      for (int p = task.first_packet; p < task.first_packet + packets; ++p) {
+        const GrPacketMasks& m = results.masks[p];
+        if (int(k % size_t(count)) == me) {
+          tests += uint64_t(popcount(m.pierced & ~m.skipped)) * cost;
+          skipped += popcount(m.skipped);
+        }
+        for (int bits = m.hit | (diagnostics ? m.skipped : 0); bits; bits &= bits - 1) {
+          const int lane = __builtin_ctz(unsigned(bits));
+          const size_t at = size_t(p) * kPeLanes + lane;
+          const int ray = results.ray[at];
+          if (ray < lo || ray >= hi) continue;
+          if (m.skipped & (1 << lane)) {
+            diagnostics->tests[ray] -= cost;
+            continue;
+          }
+          results.keepNearer(at, task.pe, hits[ray],
+                             diagnostics ? &diagnostics->winning_pe[ray] : nullptr);
+        }
+      }
     }
   }
   max_list_length_ = std::max(max_list_length_, longest);
-  finishBatch(bins_.pairs_per_pe, n, tests, slots, skipped);
+  finishBatch(bins_.pairs_per_pe, n, tests, lists_.entries.size(), skipped);
   counters_.reduce_ms += clock.ms();
 }
 
@@ -356,16 +403,13 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     }
   }
   const size_t lanes = bundles.out_lanes, packets = lanes / kBundleLanes;
-  const GrPacketMasks* masks = nullptr;
-  const float *results = nullptr, *out_t = nullptr, *out_u = nullptr, *out_v = nullptr;
-  const int* out_prim = nullptr;
   rt_.runWithHostThreadsAsleep([&] {
     enqueueUnmaps();
     enqueuePlanesUnmap();
     if (bundles.tasks.empty()) return;
     bundle_tasks_.upload(rt_, bundles.tasks);
     // t, prim, u, v per lane, then the packets' masks (4 ints each): one buffer.
-    const size_t result_floats = 4 * lanes + 4 * packets;
+    const size_t result_floats = GR_BUNDLE_RESULT_PLANES * lanes + 4 * packets;
     results_.reserve(rt_, result_floats);
     first_hit_key_.reserve(rt_, stride);
     if (interrupt)
@@ -397,25 +441,17 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     rt_.queue().enqueueNDRangeKernel(k, cl::NullRange,
                                      cl::NDRange(bundles.tasks.size() * kPeLocalSize),
                                      cl::NDRange(kPeLocalSize));
-    results = results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
+    results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
     // Mapped again for the next bundle batch once the kernel has read it.
     planes_map_ = mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
                                    planes_.capacity());
   });
-  if (results) {
-    out_t = results;
-    out_prim = reinterpret_cast<const int*>(results + lanes);
-    out_u = results + 2 * lanes;
-    out_v = results + 3 * lanes;
-    masks = reinterpret_cast<const GrPacketMasks*>(results + 4 * lanes);
-  }
+  const PacketResults results(results_map_, lanes, GR_BUNDLE_RESULT_PLANES);
   counters_.kernel_ms += clock.ms();
 
-  // Phase 2: per ray, the smallest (t, prim) over its PEs' in-voxel hits. Hits are in
-  // their own voxels and voxels are disjoint intervals of the ray, so this is the hit of
-  // the first PE in the ray's list that has one (the paper's rule); on an exact tie at a
-  // shared boundary the lower triangle index wins, as for every intersector. Each thread
-  // owns a range of bundle order and reads the part of every task that falls in it.
+  // Phase 2: per ray, the smallest (t, prim) over its PEs' in-voxel hits
+  // (PacketResults::keepNearer). Each thread owns a range of bundle order and reads the
+  // part of every task that falls in it.
   clock.restart();
   if (diagnostics) {
     diagnostics->tests.assign(n, 0);
@@ -453,7 +489,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
         int in_range = 0xFFFF;
         if (base < first) in_range &= 0xFFFF << int(first - base);
         if (base + kBundleLanes > last) in_range &= 0xFFFF >> int(base + kBundleLanes - last);
-        const GrPacketMasks& m = masks[task.out_first / kBundleLanes + p];
+        const GrPacketMasks& m = results.masks[task.out_first / kBundleLanes + p];
         const int pierced = m.pierced & in_range, tested = pierced & ~m.skipped;
         if (!pierced) continue;
         pairs += popcount(pierced);
@@ -470,17 +506,9 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
         const int out = task.out_first + p * kBundleLanes;
         for (int bits = m.hit & in_range; bits; bits &= bits - 1) {
           const int k = __builtin_ctz(unsigned(bits));
-          GrHit& best = hits[bundles.ray_of[base + k]];
-          const float t = out_t[out + k];
-          const int prim = out_prim[out + k];
-          // Equal (t, prim) from two PEs (a hit on their shared boundary) is the same
-          // hit; the lower PE is named the winner.
-          const bool tie = t == best.t && prim == best.prim;
-          if (t < best.t || (t == best.t && prim < best.prim) ||
-              (tie && winners && task.pe < (*winners)[bundles.ray_of[base + k]])) {
-            best = GrHit{t, prim, out_u[out + k], out_v[out + k]};
-            if (winners) (*winners)[bundles.ray_of[base + k]] = task.pe;
-          }
+          const int ray = bundles.ray_of[base + k];
+          results.keepNearer(size_t(out + k), task.pe, hits[ray],
+                             winners ? &(*winners)[ray] : nullptr);
         }
       }
     }

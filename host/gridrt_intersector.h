@@ -100,8 +100,7 @@ class GridRtIntersector : public Intersector {
   // Phase 1's results, mapped from the device buffers (no copy on a CPU device) for phase
   // 2 and unmapped with the next batch's device commands (an unmap on its own costs a
   // wait of its own); null when not mapped.
-  const GrHit* slot_hits_ = nullptr;  // list path
-  const float* results_map_ = nullptr;  // bundle path
+  const float* results_map_ = nullptr;  // results_, either path
   // The bundle planes (planes_, all its capacity), mapped for writing at the end of each
   // bundle batch for the next one; null when not mapped.
   float* planes_map_ = nullptr;
@@ -117,9 +116,9 @@ class GridRtIntersector : public Intersector {
   bool list_length_known_ = true;
 
   // Phase 1: runs one work-group per task (bins_.tasks) on the batch's pair packets,
-  // already in entries_ through entries_map_ (with their rays); slot_hits_ maps one hit
-  // (or a miss, or GR_SKIPPED) per entry slot.
-  void runPes(size_t rays, size_t slots, HitMode mode);
+  // already in entries_ through entries_map_ (with their rays); results_map_ maps their
+  // results (GR_LIST_RESULT_PLANES planes, then the packets' masks).
+  void runPes(size_t rays, HitMode mode);
   // The end of a batch, for both paths: adds the batch to the PE load and the counters
   // (phase 1's results stay mapped until the next batch's device commands).
   void finishBatch(const std::vector<int>& pairs_per_pe, size_t rays, uint64_t tests,
@@ -161,14 +160,13 @@ class GridRtIntersector : public Intersector {
   DeviceBuffer<int> voxel_of_pe_{"the PE voxels", CL_MEM_READ_ONLY};
   DeviceBuffer<float> planes_{"the ray bundle", CL_MEM_READ_ONLY};
   DeviceBuffer<GrBundleTask> bundle_tasks_{"the bundle tasks", CL_MEM_READ_ONLY};
-  // Phase 1's results: t, prim, u, v per lane, then the packet masks.
+  // Phase 1's results of either path (GR_RESULT_*): planes per lane, then packet masks.
   DeviceBuffer<float> results_{"the per-PE results", CL_MEM_WRITE_ONLY};
   cl::Kernel bundle_kernel_;
   DeviceBuffer<int> pe_tri_begin_{"the PE offsets", CL_MEM_READ_ONLY};
   DeviceBuffer<GrTriangle> pe_triangles_{"the PE triangles", CL_MEM_READ_ONLY};
   DeviceBuffer<float> entries_{"the PE inputs", CL_MEM_READ_ONLY};
   DeviceBuffer<GrPeTask> tasks_{"the PE tasks", CL_MEM_READ_ONLY};
-  DeviceBuffer<GrHit> slot_hits_dev_{"the per-PE hits", CL_MEM_READ_WRITE};
   DeviceBuffer<int> first_hit_key_{"the interrupt flags", CL_MEM_READ_WRITE};
 };
 

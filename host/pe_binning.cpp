@@ -27,8 +27,7 @@ float intBits(int value) {
 }
 
 // Pair number `position` (lane position % 16 of packet position / 16).
-void writePair(float* out, int position, const GrRay& ray, int r, int slot,
-               const ListEntry& entry) {
+void writePair(float* out, int position, const GrRay& ray, int r, const ListEntry& entry) {
   float* lane = out + size_t(position / kLanes) * kPairPacketFloats + position % kLanes;
   if (position % kLanes == 0) {
     // A part's packets follow one another: the next one's lines are fetched for writing
@@ -48,7 +47,6 @@ void writePair(float* out, int position, const GrRay& ray, int r, int slot,
   lane[gr_pair_value(GR_PAIR_T_ENTER, 0)] = entry.t_enter;
   lane[gr_pair_value(GR_PAIR_T_EXIT, 0)] = entry.t_exit;
   lane[gr_pair_value(GR_PAIR_RAY, 0)] = intBits(r);
-  lane[gr_pair_value(GR_PAIR_SLOT, 0)] = intBits(slot);
 }
 
 }  // namespace
@@ -105,7 +103,7 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
       const int octant = octantOf(ray);
       for (int e = lists.begin[r]; e < lists.begin[r + 1]; ++e) {
         const ListEntry& le = lists.entries[e];
-        writePair(out, counts[le.pe * kOctants + octant]++, ray, int(r), e, le);
+        writePair(out, counts[le.pe * kOctants + octant]++, ray, int(r), le);
       }
     }
   }

@@ -43,13 +43,14 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
     int lanes, __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
     __global const float* cull_planes, int cull_stride, int seg_cull,
     __global const float* seg_planes, int seg_stride) {
-  /* One result buffer (one map on the host): t, prim, u, v planes of `lanes` each, then
-   * one GrPacketMasks per packet. */
-  __global float* out_t = results;
-  __global int* out_prim = (__global int*)(results + lanes);
-  __global float* out_u = results + 2 * lanes;
-  __global float* out_v = results + 3 * lanes;
-  __global GrPacketMasks* masks = (__global GrPacketMasks*)(results + 4 * lanes);
+  /* One result buffer (one map on the host; gridrt_types.h): t, prim, u, v planes of
+   * `lanes` each, then one GrPacketMasks per packet. */
+  __global float* out_t = results + GR_RESULT_T * lanes;
+  __global int* out_prim = (__global int*)(results + GR_RESULT_PRIM * lanes);
+  __global float* out_u = results + GR_RESULT_U * lanes;
+  __global float* out_v = results + GR_RESULT_V * lanes;
+  __global GrPacketMasks* masks =
+      (__global GrPacketMasks*)(results + GR_BUNDLE_RESULT_PLANES * lanes);
   /* Padding has a zero direction and never pierces. */
   in_task &= (r->dx != 0.0f) | (r->dy != 0.0f) | (r->dz != 0.0f);
 

@@ -2,9 +2,13 @@
  * task of one PE (a non-empty voxel). Its work-items test the task's rays, 16 per
  * work-item in float16 lanes read from one packet of pair planes (GR_PAIR_*), against the
  * voxel's triangles. Phase 1 of the reduction happens here: each (ray, PE) pair keeps
- * only its closest hit that lies INSIDE the voxel (t_enter <= t <= t_exit), written to
- * the pair's slot of the ray's traversal list.
- * Phase 2 (first PE in list order with a hit wins) runs on the host.
+ * only its closest hit that lies INSIDE the voxel (t_enter <= t <= t_exit). A packet's
+ * results go to its own lanes of the result planes (GR_RESULT_*), written whole and only
+ * when a lane hits, and its masks to its GrPacketMasks: the hits are few (a few percent of
+ * the pairs of secondary rays), and 16 scattered stores per packet, one per pair's slot
+ * in the ray-major lists, had cost about a tenth of the kernel.
+ * Phase 2 (per ray, the smallest t over its PEs: the first PE in list order with a hit
+ * holds it) runs on the host.
  *
  * INTERRUPT emulates the paper's interrupt chain: a PE skips a ray once a PE earlier in
  * that ray's list has reported a hit. "Earlier" is a smaller entry distance (a list is
@@ -15,7 +19,6 @@
 #include "pe_closest16.h"
 
 #define LANES 16
-#define GR_SKIPPED (-2) /* prim of a slot whose test was skipped by the interrupt */
 
 /* Plane q of a pair packet (gridrt_types.h). */
 inline float16 gr_pair_plane16(__global const float* packet, int q) {
@@ -25,14 +28,14 @@ inline float16 gr_pair_plane16(__global const float* packet, int q) {
 __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1)))
 void gridrt_pe(__global const GrPeTask* tasks, __global const float* pairs,
                __global const int* pe_tri_begin, __global const GrTriangle* pe_tris,
-               __global GrHit* slot_hits, __global int* first_hit_key, int any_hit,
-               int interrupt, __global const float* seg_planes, int seg_stride) {
+               __global float* results, int lanes_total, __global int* first_hit_key,
+               int any_hit, int interrupt, __global const float* seg_planes, int seg_stride) {
   GrPeTask task = tasks[get_group_id(0)];
   int first = get_local_id(0) * LANES;
   if (first >= task.pair_count) return;
   int lanes = min(LANES, task.pair_count - first);
-  __global const float* packet =
-      pairs + (size_t)(task.first_packet + get_local_id(0)) * (GR_PAIR_PLANES * LANES);
+  const int packet_index = task.first_packet + get_local_id(0);
+  __global const float* packet = pairs + (size_t)packet_index * (GR_PAIR_PLANES * LANES);
   GrRays16 r16;
   r16.ox = gr_pair_plane16(packet, GR_PAIR_OX);
   r16.oy = gr_pair_plane16(packet, GR_PAIR_OY);
@@ -44,47 +47,55 @@ void gridrt_pe(__global const GrPeTask* tasks, __global const float* pairs,
   float16 tmax = gr_pair_plane16(packet, GR_PAIR_TMAX);
   float16 t_enter = gr_pair_plane16(packet, GR_PAIR_T_ENTER);
   float16 t_exit = gr_pair_plane16(packet, GR_PAIR_T_EXIT);
-  int ray_of[LANES], slot_of[LANES];
-  vstore16(as_int16(gr_pair_plane16(packet, GR_PAIR_RAY)), 0, ray_of);
-  vstore16(as_int16(gr_pair_plane16(packet, GR_PAIR_SLOT)), 0, slot_of);
+  const int16 ray16 = as_int16(gr_pair_plane16(packet, GR_PAIR_RAY));
+  int ray_of[LANES];
+  vstore16(ray16, 0, ray_of);
   const int16 lane_index = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  int16 active = lane_index < (int16)lanes;
+  const int16 pierced = lane_index < (int16)lanes;
+  int16 active = pierced, skipped = (int16)0;
   if (interrupt) {
-    int a_active[LANES];
-    int live = 0;
-    for (int k = 0; k < LANES; ++k) {
-      int on = k < lanes;
-      if (on && first_hit_key[ray_of[k]] < as_int(packet[gr_pair_value(GR_PAIR_T_ENTER, k)])) {
-        on = 0;
-        GrHit skipped;
-        skipped.t = 0.0f; skipped.prim = GR_SKIPPED; skipped.u = 0.0f; skipped.v = 0.0f;
-        slot_hits[task.slot_base + slot_of[k]] = skipped;
+    int key[LANES];
+    for (int k = 0; k < LANES; ++k) key[k] = k < lanes ? first_hit_key[ray_of[k]] : INT_MAX;
+    skipped = pierced & (vload16(0, key) < as_int16(t_enter));
+    active = pierced & ~skipped;
+  }
+  __global float* out_t = results + GR_RESULT_T * lanes_total;
+  __global int* out_prim = (__global int*)(results + GR_RESULT_PRIM * lanes_total);
+  __global float* out_u = results + GR_RESULT_U * lanes_total;
+  __global float* out_v = results + GR_RESULT_V * lanes_total;
+  __global int* out_ray = (__global int*)(results + GR_RESULT_RAY * lanes_total);
+  __global GrPacketMasks* masks =
+      (__global GrPacketMasks*)(results + GR_LIST_RESULT_PLANES * lanes_total);
+  const int out = packet_index * LANES;
+  GrPacketMasks m;
+  m.pierced = gr_lane_bits16(pierced);
+  m.hit = 0;
+  m.skipped = gr_lane_bits16(skipped);
+  m.pad = 0;
+  if (any(active)) {
+    /* The list path's rays have their own origins: segment culling. */
+    const GrSegmentPacket seg =
+        gr_segment_packet16(&r16, fmax(t_enter, tmin), fmin(t_exit, tmax), active);
+    float16 best_t, best_u, best_v;
+    int16 best_prim;
+    gr_pe_closest16(&r16, pe_tris, pe_tri_begin[task.pe], pe_tri_begin[task.pe + 1], tmin,
+                    tmax, t_enter, t_exit, active, any_hit, &best_t, &best_u, &best_v,
+                    &best_prim, (__global const float*)0, 0, (float4)0.0f, 0, &seg,
+                    seg_planes, seg_stride);
+    m.hit = gr_lane_bits16(best_prim >= 0);
+    if (m.hit) {
+      vstore16(best_t, 0, out_t + out);
+      vstore16(best_prim, 0, out_prim + out);
+      vstore16(best_u, 0, out_u + out);
+      vstore16(best_v, 0, out_v + out);
+      if (interrupt) {
+        int keys[LANES];
+        vstore16(as_int16(t_enter), 0, keys);
+        for (int k = 0; k < LANES; ++k)
+          if (m.hit & (1 << k)) atomic_min(&first_hit_key[ray_of[k]], keys[k]);
       }
-      a_active[k] = on ? -1 : 0;
-      live |= on;
     }
-    if (!live) return;
-    active = vload16(0, a_active);
   }
-  /* The list path's rays have their own origins: segment culling. */
-  const GrSegmentPacket seg =
-      gr_segment_packet16(&r16, fmax(t_enter, tmin), fmin(t_exit, tmax), active);
-  float16 best_t, best_u, best_v;
-  int16 best_prim;
-  gr_pe_closest16(&r16, pe_tris, pe_tri_begin[task.pe], pe_tri_begin[task.pe + 1], tmin, tmax,
-                  t_enter, t_exit, active, any_hit, &best_t, &best_u, &best_v, &best_prim,
-                  (__global const float*)0, 0, (float4)0.0f, 0, &seg, seg_planes, seg_stride);
-  float o_t[LANES], o_u[LANES], o_v[LANES];
-  int o_p[LANES], o_active[LANES];
-  vstore16(best_t, 0, o_t); vstore16(best_u, 0, o_u); vstore16(best_v, 0, o_v);
-  vstore16(best_prim, 0, o_p);
-  vstore16(active, 0, o_active);
-  for (int k = 0; k < lanes; ++k) {
-    if (!o_active[k]) continue;
-    GrHit h;
-    h.t = o_t[k]; h.prim = o_p[k]; h.u = o_u[k]; h.v = o_v[k];
-    slot_hits[task.slot_base + slot_of[k]] = h;
-    if (interrupt && h.prim >= 0)
-      atomic_min(&first_hit_key[ray_of[k]], as_int(packet[gr_pair_value(GR_PAIR_T_ENTER, k)]));
-  }
+  if (m.hit | m.skipped) vstore16(ray16, 0, out_ray + out);
+  masks[packet_index] = m;
 }

@@ -192,6 +192,63 @@ TEST_F(Conformance, BunnyRes4AtThePapersGridsMatchesBruteOnEveryPixel) {
                  &view);
 }
 
+// Phase 2's per-ray diagnostics on the list path, where each thread picks its rays' lanes
+// out of the packets' masks: the same list lengths, tests and winning PEs as the camera
+// path, which reads them per bundle lane. With the interrupt, rays from the side of the
+// lowest PEs (the first tasks): a ray's tests lose its skipped pairs, the winners stay,
+// and the rays' tests add up to the batch's counted tests.
+TEST_F(Conformance, ListPathDiagnosticsAgreeWithTheCameraPathAndTheCounters) {
+  Scene scene = loadGltfFile(test::sharedScene("bunny_res4.glb"));
+  auto tris = prepareTriangles(scene);
+  const Bounds b = sceneBounds(scene);
+  UniformGrid grid = buildUniformGrid(tris, b, GridSettings{});
+  const int w = 160, h = 120;
+  PinholeView view = PinholeView::of(scene.camera, w, h, PixelWindow{});
+  std::vector<GrRay> rays = cameraRays(scene, w, h);
+  GridRtIntersector plain(*runtime_, grid, PeInterrupt::Off);
+  RayDiagnostics list, camera;
+  std::vector<GrHit> list_hits, camera_hits;
+  plain.intersect(rays, HitMode::Closest, list_hits, &list);
+  plain.intersectPrimary(view, rays, camera_hits, &camera);
+  EXPECT_EQ(test::hitMismatches(camera_hits, list_hits, "list path"), 0u);
+  EXPECT_EQ(list.list_length, camera.list_length);
+  EXPECT_EQ(list.tests, camera.tests);
+  EXPECT_EQ(list.winning_pe, camera.winning_pe);
+  size_t hit_count = 0;
+  for (const GrHit& hit : list_hits) hit_count += hit.prim >= 0;
+  EXPECT_GT(hit_count, rays.size() / 10);
+
+  // From below the grid's lowest z (voxel index, hence PE order, grows with z) upwards.
+  const glm::vec3 lo = b.lo, size = b.extent();
+  const glm::vec3 eye(lo.x + 0.5f * size.x, lo.y + 0.5f * size.y, lo.z - size.z);
+  std::vector<GrRay> up;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const glm::vec3 target(lo.x + size.x * (i + 0.5f) / w, lo.y + size.y * (j + 0.5f) / h,
+                             lo.z + 2.0f * size.z);
+      const glm::vec3 d = glm::normalize(target - eye);
+      up.push_back(GrRay{eye.x, eye.y, eye.z, 0.0f, d.x, d.y, d.z, kInf});
+    }
+  RayDiagnostics all, skipping;
+  std::vector<GrHit> all_hits, skipping_hits;
+  plain.intersect(up, HitMode::Closest, all_hits, &all);
+  GridRtIntersector interrupt(*runtime_, grid, PeInterrupt::AllRays);
+  interrupt.intersect(up, HitMode::Closest, skipping_hits, &skipping);
+  EXPECT_EQ(test::hitMismatches(all_hits, skipping_hits, "interrupt"), 0u);
+  EXPECT_EQ(skipping.winning_pe, all.winning_pe);
+  EXPECT_EQ(skipping.list_length, all.list_length);
+  uint64_t sum = 0;
+  size_t fewer = 0;
+  for (size_t r = 0; r < up.size(); ++r) {
+    EXPECT_LE(skipping.tests[r], all.tests[r]) << "ray " << r;
+    fewer += skipping.tests[r] < all.tests[r];
+    sum += uint64_t(skipping.tests[r]);
+  }
+  EXPECT_GT(interrupt.counters().skipped_pairs, 0u) << "the interrupt skipped nothing";
+  EXPECT_GT(fewer, 0u);
+  EXPECT_EQ(sum, interrupt.counters().tests);
+}
+
 class SharedScenes : public Conformance, public ::testing::WithParamInterface<const char*> {};
 
 TEST_P(SharedScenes, EveryPixelMatchesBruteAtEveryGrid) {

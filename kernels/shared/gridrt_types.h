@@ -46,8 +46,7 @@ typedef struct {
 /* The list path's (ray, PE) pairs, binned per PE, 16 to a packet (a work-item's lanes),
  * each carrying its ray, so a work-item loads its packet, one vload16 per plane, instead
  * of gathering rays: plane q of lane k at gr_pair_value(q, k) (structure of arrays). RAY
- * (the ray's index in the batch) and SLOT (the pair's index in the ray-major traversal
- * lists, where its result goes) hold int bits. Lanes past a part's last pair are zero. */
+ * (the ray's index in the batch) holds int bits. Lanes past a part's last pair are zero. */
 #define GR_PAIR_LANES 16
 #define GR_PAIR_OX 0
 #define GR_PAIR_OY 1
@@ -60,17 +59,16 @@ typedef struct {
 #define GR_PAIR_T_ENTER 8 /* ray parameter where the ray enters the PE's voxel */
 #define GR_PAIR_T_EXIT 9  /* ... and where it leaves it */
 #define GR_PAIR_RAY 10
-#define GR_PAIR_SLOT 11
-#define GR_PAIR_PLANES 12
+#define GR_PAIR_PLANES 11
 #define gr_pair_value(q, k) ((q) * GR_PAIR_LANES + (k))
 
 /* One work-group's share of one PE: the pair_count pairs from packet first_packet on
- * (work-item w takes packet first_packet + w); a pair's result goes to slot_base + SLOT. */
+ * (work-item w takes packet first_packet + w, and writes that packet's results). */
 typedef struct {
   int pe;
   int first_packet;
   int pair_count;
-  int slot_base;
+  int pad;
 } GrPeTask; /* 16 bytes */
 
 /* Ray bundles (host/ray_bundles.h): rays reordered so that rays close in direction sit
@@ -84,6 +82,18 @@ typedef struct {
   int ray_count;
   int out_first;
 } GrBundleTask; /* 16 bytes */
+
+/* Phase 1's results, one buffer a batch, for both kernels: planes of `lanes` values each
+ * (packet p's lane k at p * 16 + k), t, prim, u and v (written for the packets with a
+ * hit), then for the list kernel RAY (the lane's ray, for packets with a hit or a skip),
+ * then one GrPacketMasks per packet. prim and RAY hold int bits. */
+#define GR_RESULT_T 0
+#define GR_RESULT_PRIM 1
+#define GR_RESULT_U 2
+#define GR_RESULT_V 3
+#define GR_RESULT_RAY 4
+#define GR_BUNDLE_RESULT_PLANES 4
+#define GR_LIST_RESULT_PLANES 5
 
 /* What one packet of one task did, one bit per lane. */
 typedef struct {
