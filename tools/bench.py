@@ -17,6 +17,7 @@ import csv
 import json
 import os
 import platform
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -173,26 +174,31 @@ def chart_scaling(rows, path):
 
 def medians(results, keys):
     """The first process's statistics with `keys` replaced by their medians over all."""
-    import statistics
     s = dict(results[0])
     for key in keys:
         s[key] = statistics.median(r[key] for r in results)
     return s
 
 
+def run_with_fps(args, frames):
+    """run(), with the frame rate added."""
+    r = run(args, frames)
+    r["fps"] = 1000.0 / r["frame_ms"]
+    return r
+
+
 def run_median(args, frames, runs):
     """run() in `runs` separate processes; frame and phase times are their medians (one
     busy minute on a shared machine moves a single process by a third)."""
-    results = [run(args, frames) for _ in range(runs)]
-    for r in results:
-        r["fps"] = 1000.0 / r["frame_ms"]
-    return medians(results, ("frame_ms", "fps", "lists_ms", "kernel_ms", "reduce_ms", "shade_ms",
-                             "build_ms", "mrays_per_s") + TRACE_KEYS)
+    return medians([run_with_fps(args, frames) for _ in range(runs)], MEDIAN_KEYS)
 
 
 # The tracing time by ray kind (stats "trace"): milliseconds a frame and nanoseconds a ray.
 RAY_KINDS = ("primary", "secondary", "shadow")
 TRACE_KEYS = tuple(f"trace_{kind}_{unit}" for kind in RAY_KINDS for unit in ("ms", "ns_per_ray"))
+# The statistics run_median() takes the median of.
+MEDIAN_KEYS = ("frame_ms", "fps", "lists_ms", "kernel_ms", "reduce_ms", "shade_ms", "build_ms",
+               "mrays_per_s") + TRACE_KEYS
 
 
 def bench_whitted(frames):
@@ -270,12 +276,6 @@ def run_peer(args, frames, packet, extra=()):
     return json.loads(out)
 
 
-def run_peer_median(args, frames, packet, runs):
-    """run_peer() in `runs` separate processes, times their medians (as run_median)."""
-    results = [run_peer(args, frames, packet) for _ in range(runs)]
-    return medians(results, ("frame_ms", "mrays_per_s", "build_ms"))
-
-
 def peer_row(label, s, **extra):
     r = {"label": label, "accel": f"embree packet {s['packet']}", "triangles": s["triangles"],
          "rays": s["rays"], "frame_ms": s["frame_ms"], "mrays_per_s": s["mrays_per_s"],
@@ -284,29 +284,55 @@ def peer_row(label, s, **extra):
     return r
 
 
+# gridrt's variants of a target.
+GRIDRT_VARIANTS = [("gridrt", []), ("gridrt --pe-interrupt", ["--pe-interrupt"]),
+                   ("dda", ["--accel", "dda"])]
+# The variant every other one is compared with, round by round (the issue's yardstick).
+YARDSTICK = "embree 1-ray"
+
+
+def speedup(key, value, yardstick):
+    """How many times faster than the yardstick a value of `key` is (> 1: faster)."""
+    return value / yardstick if key in ("mrays_per_s", "fps") else yardstick / value
+
+
 def bench_targets(frames):
+    """Each target's variants run in turns, one process each per round, TARGET_RUNS rounds:
+    a busy minute then slows every variant alike instead of the ones that ran in it. Each
+    figure is the median over the rounds; `vs_embree_1ray` is the median over the rounds of
+    the speed-up on Embree's single-ray path measured in the same round."""
     rows = []
     peer = os.path.exists(EMBREE_PEER)
     if not peer:
         print(f"no {EMBREE_PEER} (tools/setup.sh --bench builds it): Embree columns left out")
     for label, key, args in TARGETS:
-        for variant, extra in [("gridrt", []), ("gridrt --pe-interrupt", ["--pe-interrupt"]),
-                               ("dda", ["--accel", "dda"])]:
-            s = run_median(args + extra, frames, TARGET_RUNS)
+        variants = [(name, lambda extra=extra: run_with_fps(args + extra, frames))
+                    for name, extra in GRIDRT_VARIANTS]
+        if peer and key != "fps":  # Embree traces rays; it has no Whitted renderer here
+            peer_args = [a for a in args if a != "--primary-only"]
+            variants += [(name, lambda packet=packet: run_peer(peer_args, frames, packet))
+                         for name, packet in EMBREE_VARIANTS]
+        results = {name: [] for name, _ in variants}
+        for _ in range(TARGET_RUNS):
+            for name, measure in variants:
+                results[name].append(measure())
+        for name, _ in variants:
+            embree = name.startswith("embree")
+            s = medians(results[name], ("frame_ms", "mrays_per_s", "build_ms") if embree
+                        else MEDIAN_KEYS)
             value = s[key]
-            rows.append(row(f"{label} [{variant}]", s, target=label, variant=variant, value=value))
-            print(f"target {label:52s} {variant:22s}: {value:8.2f}  (frame {s['frame_ms']:.2f} ms)",
-                  flush=True)
-        if not peer or key == "fps":  # Embree traces rays; it has no Whitted renderer here
-            continue
-        for variant, packet in EMBREE_VARIANTS:
-            s = run_peer_median([a for a in args if a != "--primary-only"], frames, packet,
-                                TARGET_RUNS)
-            value = s[key]
-            rows.append(peer_row(f"{label} [{variant}]", s, target=label, variant=variant,
-                                 value=value))
-            print(f"target {label:52s} {variant:22s}: {value:8.2f}  (trace {s['frame_ms']:.2f} ms)",
-                  flush=True)
+            extra = {}
+            if YARDSTICK in results:
+                extra["vs_embree_1ray"] = statistics.median(
+                    speedup(key, mine[key], theirs[key])
+                    for mine, theirs in zip(results[name], results[YARDSTICK]))
+            r = (peer_row if embree else row)(f"{label} [{name}]", s, target=label, variant=name,
+                                              value=value, **extra)
+            rows.append(r)
+            versus = f", {extra['vs_embree_1ray']:.2f}x Embree 1-ray" if extra else ""
+            what = "trace" if embree else "frame"
+            print(f"target {label:52s} {name:22s}: {value:8.2f}  ({what} {s['frame_ms']:.2f} ms"
+                  f"{versus})", flush=True)
     return rows + accuracy_rows(peer)
 
 
