@@ -45,12 +45,8 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
     __global const float* seg_planes, int seg_stride) {
   /* One result buffer (one map on the host; gridrt_types.h): t, prim, u, v planes of
    * `lanes` each, then one GrPacketMasks per packet. */
-  __global float* out_t = results + GR_RESULT_T * lanes;
-  __global int* out_prim = (__global int*)(results + GR_RESULT_PRIM * lanes);
-  __global float* out_u = results + GR_RESULT_U * lanes;
-  __global float* out_v = results + GR_RESULT_V * lanes;
   __global GrPacketMasks* masks =
-      (__global GrPacketMasks*)(results + GR_BUNDLE_RESULT_PLANES * lanes);
+      (__global GrPacketMasks*)(results + GR_BUNDLE_RESULT_PLANES * (size_t)lanes);
   /* Padding has a zero direction and never pierces. */
   in_task &= (r->dx != 0.0f) | (r->dy != 0.0f) | (r->dz != 0.0f);
 
@@ -93,19 +89,9 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
     gr_pe_closest16(r, pe_tris, begin, end, tmin, tmax, t_enter, t_exit, active, any_hit,
                     &best_t, &best_u, &best_v, &best_prim, cull_planes, cull_stride,
                     packet_box, cull.enabled != 0.0f, &seg, seg_planes, seg_stride);
-    m.hit = gr_lane_bits16(best_prim >= 0);
-    if (m.hit) {
-      vstore16(best_t, 0, out_t + out);
-      vstore16(best_prim, 0, out_prim + out);
-      vstore16(best_u, 0, out_u + out);
-      vstore16(best_v, 0, out_v + out);
-      if (interrupt) {
-        int keys[LANES];
-        vstore16(as_int16(t_enter), 0, keys);
-        for (int k = 0; k < LANES; ++k)
-          if (m.hit & (1 << k)) atomic_min(&first_hit_key[first + k], keys[k]);
-      }
-    }
+    const int16 lane = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    m.hit = gr_store_packet_hits(best_t, best_prim, best_u, best_v, results, (size_t)lanes, out,
+                                 interrupt, first_hit_key, (int16)first + lane, t_enter);
   }
   m.pierced = gr_lane_bits16(pierced);
   m.skipped = gr_lane_bits16(skipped);

@@ -59,13 +59,10 @@ void gridrt_pe(__global const GrPeTask* tasks, __global const float* pairs,
     skipped = pierced & (vload16(0, key) < as_int16(t_enter));
     active = pierced & ~skipped;
   }
-  __global float* out_t = results + GR_RESULT_T * lanes_total;
-  __global int* out_prim = (__global int*)(results + GR_RESULT_PRIM * lanes_total);
-  __global float* out_u = results + GR_RESULT_U * lanes_total;
-  __global float* out_v = results + GR_RESULT_V * lanes_total;
-  __global int* out_ray = (__global int*)(results + GR_RESULT_RAY * lanes_total);
+  const size_t all_lanes = (size_t)lanes_total;
+  __global int* out_ray = (__global int*)(results + GR_RESULT_RAY * all_lanes);
   __global GrPacketMasks* masks =
-      (__global GrPacketMasks*)(results + GR_LIST_RESULT_PLANES * lanes_total);
+      (__global GrPacketMasks*)(results + GR_LIST_RESULT_PLANES * all_lanes);
   const int out = packet_index * LANES;
   GrPacketMasks m;
   m.pierced = gr_lane_bits16(pierced);
@@ -82,19 +79,8 @@ void gridrt_pe(__global const GrPeTask* tasks, __global const float* pairs,
                     tmax, t_enter, t_exit, active, any_hit, &best_t, &best_u, &best_v,
                     &best_prim, (__global const float*)0, 0, (float4)0.0f, 0, &seg,
                     seg_planes, seg_stride);
-    m.hit = gr_lane_bits16(best_prim >= 0);
-    if (m.hit) {
-      vstore16(best_t, 0, out_t + out);
-      vstore16(best_prim, 0, out_prim + out);
-      vstore16(best_u, 0, out_u + out);
-      vstore16(best_v, 0, out_v + out);
-      if (interrupt) {
-        int keys[LANES];
-        vstore16(as_int16(t_enter), 0, keys);
-        for (int k = 0; k < LANES; ++k)
-          if (m.hit & (1 << k)) atomic_min(&first_hit_key[ray_of[k]], keys[k]);
-      }
-    }
+    m.hit = gr_store_packet_hits(best_t, best_prim, best_u, best_v, results, all_lanes, out,
+                                 interrupt, first_hit_key, ray16, t_enter);
   }
   if (m.hit | m.skipped) vstore16(ray16, 0, out_ray + out);
   masks[packet_index] = m;

@@ -193,4 +193,28 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
   *best_prim_out = best_prim;
 }
 
+/* Phase 1's output for one packet, for both PE kernels: where a lane hits, the packet's
+ * t, prim, u and v planes go whole to its lanes [out, out + 16) of the result planes
+ * (GR_RESULT_*, each lanes_total long). With interrupt, each hitting lane lowers
+ * first_hit_key[key_of lane] to its t_enter (as int bits). Returns the hit mask. */
+inline __attribute__((always_inline)) int gr_store_packet_hits(
+    float16 best_t, int16 best_prim, float16 best_u, float16 best_v, __global float* results,
+    size_t lanes_total, int out, int interrupt, __global int* first_hit_key, int16 key_of,
+    float16 t_enter) {
+  const int hit = gr_lane_bits16(best_prim >= 0);
+  if (!hit) return 0;
+  vstore16(best_t, 0, results + GR_RESULT_T * lanes_total + out);
+  vstore16(best_prim, 0, (__global int*)(results + GR_RESULT_PRIM * lanes_total) + out);
+  vstore16(best_u, 0, results + GR_RESULT_U * lanes_total + out);
+  vstore16(best_v, 0, results + GR_RESULT_V * lanes_total + out);
+  if (interrupt) {
+    int keys[16], index[16];
+    vstore16(as_int16(t_enter), 0, keys);
+    vstore16(key_of, 0, index);
+    for (int k = 0; k < 16; ++k)
+      if (hit & (1 << k)) atomic_min(&first_hit_key[index[k]], keys[k]);
+  }
+  return hit;
+}
+
 #endif
