@@ -37,9 +37,14 @@ CameraRayGenerator::CameraRayGenerator(const Camera& camera, int width, int heig
       tan_half_(std::tan(camera.yfov * 0.5f)),
       origin_(camera.world[3]) {}
 
-void CameraRayGenerator::centreRow(int j, int i0, int i1, GrRay* out) const {
+void CameraRayGenerator::centreRow(int j, int i0, int i1, GrRay* out, float* out_dx,
+                                   float* out_dy, float* out_dz) const {
   if (camera_.orthographic) {
-    for (int i = i0; i < i1; ++i) out[i - i0] = (*this)(i, j, 0.5f, 0.5f);
+    for (int i = i0; i < i1; ++i) {
+      const GrRay ray = (*this)(i, j, 0.5f, 0.5f);
+      out[i - i0] = ray;
+      if (out_dx) out_dx[i - i0] = ray.dx, out_dy[i - i0] = ray.dy, out_dz[i - i0] = ray.dz;
+    }
     return;
   }
   // operator()'s arithmetic spelled out in glm's order of operations: normalize(v) is
@@ -67,6 +72,12 @@ void CameraRayGenerator::centreRow(int j, int i0, int i1, GrRay* out) const {
     for (int k = 0; k < count; ++k)
       out[c0 - i0 + k] = GrRay{origin_.x, origin_.y, origin_.z, 0.0f, dx[k], dy[k], dz[k],
                                std::numeric_limits<float>::infinity()};
+    if (out_dx)
+      for (int k = 0; k < count; ++k) {
+        out_dx[c0 - i0 + k] = dx[k];
+        out_dy[c0 - i0 + k] = dy[k];
+        out_dz[c0 - i0 + k] = dz[k];
+      }
   }
 }
 

@@ -30,7 +30,9 @@ class CameraRayGenerator {
   GrRay operator()(int i, int j, float sx, float sy) const;
   // The centre rays of pixels [i0, i1) of row j into out[0 .. i1 - i0): the same rays as
   // operator()(i, j, 0.5, 0.5), bit for bit, written so that the compiler vectorises them.
-  void centreRow(int j, int i0, int i1, GrRay* out) const;
+  // With dx, dy, dz (all three or none), their directions also into dx[0 .. i1 - i0) etc.
+  void centreRow(int j, int i0, int i1, GrRay* out, float* dx = nullptr, float* dy = nullptr,
+                 float* dz = nullptr) const;
   // The centre rays of every pixel of `window`, row-major, into out[0 .. width * height),
   // row by row on all cores.
   void centreWindow(const PixelWindow& window, GrRay* out) const;

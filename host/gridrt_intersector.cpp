@@ -299,26 +299,42 @@ void GridRtIntersector::generateAndIntersectPrimary(const PinholeView& view,
   PlaneFill fill;
   fill.common = camera(w.x0, w.y0, 0.5f, 0.5f);
   fill.write = [&](float* planes, size_t stride, int& differing, int& uncovered) {
-    const std::vector<int>& ray_of = camera_bundles_.ray_of;
     float* dx = planes + GR_PLANE_DX * stride;
     float* dy = planes + GR_PLANE_DY * stride;
     float* dz = planes + GR_PLANE_DZ * stride;
+    // Each row's directions come out of centreRow as three arrays, one tile column (4
+    // lanes) after another; row ly of a tile row fills lanes 4 ly .. 4 ly + 3 of each of
+    // its tiles. Past the window's right edge and bottom the lanes are padding (zero).
+    const size_t row_floats = size_t(tiles_x) * kTileSize;
+    camera_rows_.resize(omp_get_max_threads());
     int u = 0;
-#pragma omp parallel for schedule(static) reduction(+ : u)
-    for (int ty = 0; ty < tiles_y; ++ty) {
-      const int y0 = ty * kTileSize, y1 = std::min(wh, y0 + kTileSize);
-      for (int y = y0; y < y1; ++y)
-        camera.centreRow(w.y0 + y, w.x0, w.x1, rays.data() + size_t(y) * ww);
-      const size_t b0 = ty * band_slots, b1 = b0 + band_slots;
-      for (size_t b = b0; b < b1; ++b) {
-        const int r = ray_of[b];
-        dx[b] = r >= 0 ? rays[r].dx : 0.0f;
-        dy[b] = r >= 0 ? rays[r].dy : 0.0f;
-        dz[b] = r >= 0 ? rays[r].dz : 0.0f;
+#pragma omp parallel reduction(+ : u)
+    {
+      std::vector<float>& row = camera_rows_[omp_get_thread_num()];
+      row.assign(3 * row_floats, 0.0f);
+      float *rdx = row.data(), *rdy = rdx + row_floats, *rdz = rdy + row_floats;
+#pragma omp for schedule(static)
+      for (int ty = 0; ty < tiles_y; ++ty) {
+        for (int ly = 0; ly < kTileSize; ++ly) {
+          const int y = ty * kTileSize + ly;
+          if (y < wh) {
+            camera.centreRow(w.y0 + y, w.x0, w.x1, rays.data() + size_t(y) * ww, rdx, rdy, rdz);
+            // The frame's cover (packet_culling.h).
+            for (int x = 0; x < ww; ++x)
+              u += !cullFrameCovers(frame, GrRay{0, 0, 0, 0, rdx[x], rdy[x], rdz[x], 0});
+          } else {
+            std::fill(row.begin(), row.end(), 0.0f);
+          }
+          const size_t b0 = size_t(ty) * band_slots + size_t(ly) * kTileSize;
+          for (int tx = 0; tx < tiles_x; ++tx)
+            for (int lx = 0; lx < kTileSize; ++lx) {
+              const size_t b = b0 + size_t(tx) * kBundleLanes + lx, x = size_t(tx) * kTileSize + lx;
+              dx[b] = rdx[x];
+              dy[b] = rdy[x];
+              dz[b] = rdz[x];
+            }
+        }
       }
-      // The frame's cover, from the planes (padding, a zero direction, does not count).
-      for (size_t b = b0; b < b1; ++b)
-        u += ray_of[b] >= 0 && !cullFrameCovers(frame, GrRay{0, 0, 0, 0, dx[b], dy[b], dz[b], 0});
     }
     for (size_t b = size_t(tiles_y) * band_slots; b < stride; ++b) dx[b] = dy[b] = dz[b] = 0.0f;
     // A pinhole camera's rays all start at its eye, over [0, inf) (CameraRayGenerator::pinhole).

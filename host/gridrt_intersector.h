@@ -146,6 +146,7 @@ class GridRtIntersector : public Intersector {
   GrCullFrame prepareCulling(bool allowed, const GrCullFrame& frame, const GrRay& common);
   RayBundles camera_bundles_;
   CameraBundleScratch camera_scratch_;
+  std::vector<std::vector<float>> camera_rows_;  // per thread: one row's directions (x, y, z)
   bool force_light_bundles_ = false;
   bool packet_culling_used_ = false;
   RayBundles light_bundles_;
