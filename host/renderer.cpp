@@ -220,6 +220,7 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     for (size_t k = 0; k < passes; ++k) {
       const size_t first = k * per_pass, last = std::min(refine.size(), first + per_pass);
       window_pixels_.assign(refine.begin() + first, refine.begin() + last);
+      window_pixels_width_ = 0;  // not a band
       renderPass(frame, extra, 1, keep, nullptr, passProgress(progress, int(k), int(passes)));
     }
   }
@@ -252,11 +253,17 @@ void Renderer::renderInBands(Frame& frame, const PixelWindow& window, int spp, f
   for (int band = 0; band < bands; ++band) {
     const PixelWindow part{window.x0, window.y0 + band * rows, window.x1,
                            std::min(window.y1, window.y0 + (band + 1) * rows)};
-    window_pixels_.resize(size_t(part.width()) * part.height());
+    const PixelWindow& held = window_pixels_band_;
+    if (window_pixels_width_ != settings_.width || held.x0 != part.x0 || held.y0 != part.y0 ||
+        held.x1 != part.x1 || held.y1 != part.y1) {
+      window_pixels_.resize(size_t(part.width()) * part.height());
 #pragma omp parallel for schedule(static)
-    for (int y = part.y0; y < part.y1; ++y)
-      for (int x = part.x0; x < part.x1; ++x)
-        window_pixels_[size_t(y - part.y0) * part.width() + (x - part.x0)] = y * settings_.width + x;
+      for (int y = part.y0; y < part.y1; ++y)
+        for (int x = part.x0; x < part.x1; ++x)
+          window_pixels_[size_t(y - part.y0) * part.width() + (x - part.x0)] = y * settings_.width + x;
+      window_pixels_band_ = part;
+      window_pixels_width_ = settings_.width;
+    }
     renderPass(frame, spp, 0, weight, &part, passProgress(progress, band, bands));
   }
 }
@@ -366,7 +373,8 @@ void Renderer::addPassRadiance(int depths, PrimaryPaths primary) {
       addInPixelRuns(
           ps.size(), [&](size_t i) { return ps[i].pixel; },
           [&](size_t i) { radiance_[ps[i].pixel] += local[i]; });
-    } else {  // primary rays: each pixel's samples are consecutive, pixels distinct
+    } else if (!g.radiance_in_pixels) {  // primary rays: each pixel's samples are
+                                         // consecutive, pixels distinct
 #pragma omp parallel for schedule(static)
       for (long long k = 0; k < (long long)(local.size() / primary.spp); ++k)
         for (int s = 0; s < primary.spp; ++s)
@@ -423,20 +431,27 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
     // order, each hit its base colour times |n . d|; no lights, no spawned rays. One plain
     // loop: the general loop's per-ray bookkeeping (paths, shading order, blocks of 16)
     // cost more than this shading does.
+    // With one sample a pixel (pixels distinct, in ray order), each ray's radiance goes
+    // straight into its pixel: the same addition addPassRadiance would make, a pass less.
     const glm::vec3 weight(primary.weight);
+    const bool into_pixels = primary.spp == 1;
+    g.radiance_in_pixels = into_pixels;
 #pragma omp parallel for schedule(static)
     for (long long i = 0; i < (long long)n; ++i) {
       const GrHit& hit = g.hits[i];
-      if (hit.prim < 0) {
-        local[i] = weight * settings_.background;
-        continue;
+      glm::vec3 value = weight * settings_.background;
+      if (hit.prim >= 0) {
+        const GrRay& ray = rays[i];
+        const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim,
+                                          ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
+        const glm::vec3& base = scene_.materials[scene_.material_of[hit.prim]].base_color;
+        value = weight * base *
+                std::fabs(glm::dot(glm::vec3(h.nx, h.ny, h.nz), glm::vec3(ray.dx, ray.dy, ray.dz)));
       }
-      const GrRay& ray = rays[i];
-      const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim,
-                                        ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
-      const glm::vec3& base = scene_.materials[scene_.material_of[hit.prim]].base_color;
-      local[i] = weight * base *
-                 std::fabs(glm::dot(glm::vec3(h.nx, h.ny, h.nz), glm::vec3(ray.dx, ray.dy, ray.dz)));
+      if (into_pixels)
+        radiance_[window_pixels_[i]] += value;
+      else
+        local[i] = value;
     }
     frame.times.shade_ms += clock.ms();
     g.first_shadow = shadow_offset;
@@ -445,6 +460,7 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
     generations_[depth + 1].paths.clear();
     return 0;
   }
+  g.radiance_in_pixels = false;
   const bool spawn = depth < settings_.max_depth;
   // Chunks handed out dynamically: the rays' cost varies across the image (background,
   // walls, mirror and glass), so a static split leaves one core waiting.

@@ -202,6 +202,9 @@ class Renderer {
     std::vector<PathRay> paths;
     std::vector<GrHit> hits;
     std::vector<glm::vec3> radiance;  // per ray: what it adds to its pixel, shadows apart
+    // Headlight shading with one sample a pixel adds each ray's radiance to its pixel
+    // itself (radiance stays unused): addPassRadiance has nothing left to add for it.
+    bool radiance_in_pixels = false;
     size_t first_shadow = 0, shadow_count = 0;  // its shadow rays in shadow_rays_
   };
   std::vector<Generation> generations_;  // by depth, max_depth + 2 of them
@@ -217,6 +220,10 @@ class Renderer {
   std::vector<Spawned> spawned_;
   std::vector<size_t> chunk_offsets_;  // where each chunk's output starts (concatenateChunks)
   std::vector<int> window_pixels_;  // full-image index of each rendered pixel
+  // The band window_pixels_ holds (renderInBands keeps it from frame to frame), and the
+  // image width it was made for; width 0 when it holds something else.
+  PixelWindow window_pixels_band_;
+  int window_pixels_width_ = 0;
   std::vector<int> block_order_;    // the window's pixels in 4x4 blocks (pixel_blocks.h)
   int block_order_width_ = 0, block_order_height_ = 0;  // the window block_order_ is for
   std::vector<glm::vec3> radiance_;  // per pixel accumulator

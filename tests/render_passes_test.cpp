@@ -132,5 +132,30 @@ TEST_F(RenderPasses, ABudgetBelowOneRowRendersRowByRow) {
   expectSameFrame(want, got, "one row per pass");
 }
 
+// One renderer, several frames (gridrt --repeat): what it keeps between frames (the
+// band's pixel list, headlight radiance added straight to the pixels) must not leak into
+// the next frame. Adaptive sampling replaces the pixel list with its refined pixels.
+TEST_F(RenderPasses, RepeatedFramesOfOneRendererAreEqual) {
+  for (const bool primary_only : {false, true}) {
+    RenderSettings s = small();
+    s.adaptive_aa = true;
+    s.aa_samples = 2;
+    s.primary_only = primary_only;
+    GridRtIntersector gridrt(*runtime_, grid_, PeInterrupt::Off);
+    Renderer renderer(scene_, scene_.camera, gridrt, s);
+    Frame first, second, third;
+    renderer.render(first);
+    renderer.render(second);
+    EXPECT_GT(first.refined_pixels, 0u);
+    expectSameFrame(first, second, primary_only ? "headlight, again" : "Whitted, again");
+    RenderSettings uniform = s;
+    uniform.adaptive_aa = false;
+    Renderer plain(scene_, scene_.camera, gridrt, uniform);
+    plain.render(first);
+    plain.render(third);
+    expectSameFrame(first, third, primary_only ? "headlight, uniform again" : "Whitted, uniform again");
+  }
+}
+
 }  // namespace
 }  // namespace gridrt
