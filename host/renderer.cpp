@@ -373,8 +373,8 @@ void Renderer::addPassRadiance(int depths, PrimaryPaths primary) {
       addInPixelRuns(
           ps.size(), [&](size_t i) { return ps[i].pixel; },
           [&](size_t i) { radiance_[ps[i].pixel] += local[i]; });
-    } else if (!g.radiance_in_pixels) {  // primary rays: each pixel's samples are
-                                         // consecutive, pixels distinct
+    } else if (!g.radiance_in_pixels) {
+      // Primary rays: each pixel's samples are consecutive, pixels distinct.
 #pragma omp parallel for schedule(static)
       for (long long k = 0; k < (long long)(local.size() / primary.spp); ++k)
         for (int s = 0; s < primary.spp; ++s)
