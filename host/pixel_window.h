@@ -9,6 +9,9 @@ struct PixelWindow {
   bool whole() const { return x1 == 0 && y1 == 0; }
   int width() const { return x1 - x0; }
   int height() const { return y1 - y0; }
+  bool operator==(const PixelWindow& o) const {
+    return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1;
+  }
 };
 
 }  // namespace gridrt
