@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace gridrt {
 
@@ -62,9 +63,12 @@ size_t FaceWindow::cellOf(float u, float v) const {
 }
 
 void FaceWindow::cellRange(float lo, float hi, float origin, float scale, int& c0, int& c1) const {
+  // (x - origin) * scale is monotone in x, so the rays' cells (cellOf) and these agree.
   auto cell = [&](float x) { return std::floor(std::max(-1.0f, std::min(float(res), (x - origin) * scale))); };
-  c0 = std::max(0, int(cell(lo)) - kLightCellMargin);
-  c1 = std::min(res, int(cell(hi)) + 1 + kLightCellMargin);
+  lo -= kLightFaceMargin * (1.0f + std::fabs(lo));
+  hi += kLightFaceMargin * (1.0f + std::fabs(hi));
+  c0 = std::max(0, int(cell(lo)));
+  c1 = std::min(res, int(cell(hi)) + 1);
 }
 
 void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRay* rays,
@@ -85,7 +89,9 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
       const GrRay& ray = rays[r];
       const glm::vec3 d(ray.dx, ray.dy, ray.dz);
       const glm::vec3 end = glm::vec3(ray.ox, ray.oy, ray.oz) + ray.tmax * d;
-      const float off = glm::length(end - light);
+      const float reach = std::max({std::fabs(ray.ox), std::fabs(ray.oy), std::fabs(ray.oz)}) + ray.tmax;
+      const float off = glm::length(end - light) +
+                        kLightEndRoundingEpsilons * std::numeric_limits<float>::epsilon() * reach;
       miss = std::max(miss, std::isfinite(off) ? off : INFINITY);
       int face = 0;
       float u = 0.0f, v = 0.0f;
@@ -147,7 +153,7 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
   }
 
   // Boxes are grown by the rays' largest miss of the light (rounding of the corners'
-  // projections is covered by the cell margin below).
+  // projections is covered by kLightFaceMargin, in cellRange).
   const float slack = kLightSlackFactor * miss;
 
   const int pes = grid.peCount();
@@ -201,7 +207,7 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
             vmax = std::max(vmax, w);
           }
         }
-        // Cells, kLightCellMargin more on every side against rounding.
+        // Cells, against rounding grown by kLightFaceMargin.
         int c0, c1, r0, r1;
         fw.cellRange(umin, umax, fw.u0, fw.su, c0, c1);
         fw.cellRange(vmin, vmax, fw.v0, fw.sv, r0, r1);

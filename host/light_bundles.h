@@ -5,10 +5,13 @@
 // receives, per cell row its voxel covers on a face, the run of rays in the covered
 // cells; the kernel's slab test keeps the pairs of the traversal lists.
 //
-// Conservative by construction: the voxel is grown by the largest distance between a
-// ray's end and the light (measured on the batch: the origin offset plus rounding, times
-// kLightSlackFactor) before it is projected, its projection is grown by one cell, and
-// the part of it that touches a plane through the light projects to the face borders.
+// Conservative by construction: a ray through a point q of a voxel whose end lies within m
+// of the light points away from the light exactly as the direction from the light to a
+// point within m of q does. So the voxel is grown by the largest such m (measured on the
+// batch, with a bound on the rounding of the ends, times kLightSlackFactor) before it is
+// projected; the projection of a box in front of the light is the hull of its corners',
+// computed up to rounding (kLightFaceMargin); and the part of it that touches a plane
+// through the light projects to the face borders.
 #pragma once
 #include <array>
 #include <cmath>
@@ -23,9 +26,14 @@ namespace gridrt {
 
 // Safety factor on the measured distance between the rays' ends and the light.
 constexpr float kLightSlackFactor = 4.0f;
-// Cells added on every side of a projected box: the projection's rounding (a few ulps
-// of the face coordinates) is far below a cell. No test isolates it (the slack covers).
-constexpr int kLightCellMargin = 1;
+// The float end o + tmax * d of a ray is within this many FLT_EPSILON of (|o|inf + tmax)
+// of its exact end (two roundings a coordinate, in 3D): added to each ray's measured
+// miss, so that rays whose computed end is the light itself still get a slack.
+constexpr float kLightEndRoundingEpsilons = 4.0f;
+// A voxel's projected outline on a cube face is grown by this, relative (times 1 + |u|),
+// on every side: a ray's face coordinate (one rounding) and a box corner's (three) are
+// each within ~2e-7 relative of exact, and must not be split by a cell boundary.
+constexpr float kLightFaceMargin = 1e-6f;
 
 // Rays a cube cell should hold on average.
 constexpr float kLightRaysPerCell = 8.0f;
@@ -46,8 +54,8 @@ struct FaceWindow {
   // Chooses res (about kLightRaysPerCell rays a cell) and places the face's cells.
   void layout(int first_row, size_t first_cell);
   size_t cellOf(float u, float v) const;  // of a ray on this face
-  // The columns (rows) [c0, c1) that face coordinates [lo, hi] may touch, with
-  // kLightCellMargin more on each side.
+  // The columns (rows) [c0, c1) that face coordinates [lo, hi] may touch, with [lo, hi]
+  // grown by kLightFaceMargin.
   void cellRange(float lo, float hi, float origin, float scale, int& c0, int& c1) const;
 };
 
