@@ -296,11 +296,26 @@ def speedup(key, value, yardstick):
     return value / yardstick if key in ("mrays_per_s", "fps") else yardstick / value
 
 
-def bench_targets(frames):
-    """Each target's variants run in turns, one process each per round, TARGET_RUNS rounds:
-    a busy minute then slows every variant alike instead of the ones that ran in it. Each
-    figure is the median over the rounds; `vs_embree_1ray` is the median over the rounds of
-    the speed-up on Embree's single-ray path measured in the same round."""
+def goal_of(label):
+    """A target label's goal, "(<= 2)" or "(>= 20)" at its end: (comparison, value)."""
+    op, value = label.rsplit("(", 1)[1].rstrip(")").split()
+    return op, float(value)
+
+
+def meets(label, value):
+    op, goal = goal_of(label)
+    return value <= goal if op == "<=" else value >= goal
+
+
+def bench_targets(frames, rounds=None):
+    """Each target's variants run in turns, one process each per round, `rounds` rounds
+    (TARGET_RUNS by default): a busy minute then slows every variant alike instead of the
+    ones that ran in it. Each figure is the median over the rounds, with the rounds' lowest
+    and highest (value_min, value_max) and how many rounds met the target (rounds_met of
+    rounds): on a noisy machine a median near the line says less than that count.
+    `vs_embree_1ray` is the median over the rounds of the speed-up on Embree's single-ray
+    path measured in the same round."""
+    rounds = rounds or TARGET_RUNS
     rows = []
     peer = os.path.exists(EMBREE_PEER)
     if not peer:
@@ -313,7 +328,7 @@ def bench_targets(frames):
             variants += [(name, lambda packet=packet: run_peer(peer_args, frames, packet))
                          for name, packet in EMBREE_VARIANTS]
         results = {name: [] for name, _ in variants}
-        for _ in range(TARGET_RUNS):
+        for _ in range(rounds):
             for name, measure in variants:
                 results[name].append(measure())
         for name, _ in variants:
@@ -321,7 +336,9 @@ def bench_targets(frames):
             s = medians(results[name], ("frame_ms", "mrays_per_s", "build_ms") if embree
                         else MEDIAN_KEYS)
             value = s[key]
-            extra = {}
+            per_round = [r[key] for r in results[name]]
+            extra = {"value_min": min(per_round), "value_max": max(per_round),
+                     "rounds_met": sum(meets(label, v) for v in per_round), "rounds": rounds}
             if YARDSTICK in results:
                 extra["vs_embree_1ray"] = statistics.median(
                     speedup(key, mine[key], theirs[key])
@@ -329,10 +346,12 @@ def bench_targets(frames):
             r = (peer_row if embree else row)(f"{label} [{name}]", s, target=label, variant=name,
                                               value=value, **extra)
             rows.append(r)
-            versus = f", {extra['vs_embree_1ray']:.2f}x Embree 1-ray" if extra else ""
+            versus = (f", {extra['vs_embree_1ray']:.2f}x Embree 1-ray"
+                      if "vs_embree_1ray" in extra else "")
             what = "trace" if embree else "frame"
-            print(f"target {label:52s} {name:22s}: {value:8.2f}  ({what} {s['frame_ms']:.2f} ms"
-                  f"{versus})", flush=True)
+            print(f"target {label:52s} {name:22s}: {value:8.2f}  (rounds {min(per_round):.2f}-"
+                  f"{max(per_round):.2f}, met in {extra['rounds_met']} of {rounds}; {what} "
+                  f"{s['frame_ms']:.2f} ms{versus})", flush=True)
     return rows + accuracy_rows(peer)
 
 
@@ -395,9 +414,13 @@ def chart_targets(rows, path):
     fig, axes = plt.subplots(1, len(targets) + 1, figsize=(4 * (len(targets) + 1), 4.4))
     for ax, target in zip(axes, targets):
         sub = [r for r in speed if r["target"] == target]
-        ax.bar([r["variant"] for r in sub], [r["value"] for r in sub],
-               color=["C1" if r["variant"].startswith("embree") else "C0" for r in sub])
-        goal = float(target.split("(")[-1].split()[-1].rstrip(")"))
+        values = [r["value"] for r in sub]
+        ax.bar([r["variant"] for r in sub], values,
+               color=["C1" if r["variant"].startswith("embree") else "C0" for r in sub],
+               yerr=[[v - r["value_min"] for v, r in zip(values, sub)],
+                     [r["value_max"] - v for v, r in zip(values, sub)]],
+               capsize=3, error_kw={"elinewidth": 0.8})
+        goal = goal_of(target)[1]
         ax.axhline(goal, color="red", ls="--", label=f"target {goal:g}")
         ax.set_title(target, fontsize=8)
         ax.tick_params(axis="x", labelsize=7, rotation=30)
@@ -414,7 +437,8 @@ def chart_targets(rows, path):
     ax.set_title("accuracy: " + ACCURACY_TARGET.replace(" from", "\nfrom"), fontsize=8)
     ax.set_ylabel("pixels (of 76,800)")
     ax.legend(fontsize=7)
-    fig.suptitle(machine_line() + "; Embree traces only (no ray generation or shading)", fontsize=8)
+    fig.suptitle(machine_line() + "; bars: the median round, whiskers: the lowest and highest"
+                 " round; Embree traces only (no ray generation or shading)", fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
@@ -502,13 +526,17 @@ def main():
     p.add_argument("set", choices=list(SETS) + ["all"])
     p.add_argument("--frames", type=int, default=7, help="timed frames per figure (median), >= 5")
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
+    p.add_argument("--rounds", type=int, default=TARGET_RUNS,
+                   help=f"targets: rounds of every variant in turns (default {TARGET_RUNS}), >= 3")
     a = p.parse_args()
     if a.frames < 5:
         p.error("--frames must be at least 5")
+    if a.rounds < 3:
+        p.error("--rounds must be at least 3")
     os.makedirs(a.out, exist_ok=True)
     for name in (SETS if a.set == "all" else [a.set]):
         bench, chart = SETS[name]
-        rows = bench(a.frames)
+        rows = bench_targets(a.frames, a.rounds) if name == "targets" else bench(a.frames)
         write_csv(os.path.join(a.out, f"{name}.csv"), rows)
         chart(rows, os.path.join(a.out, f"{name}.png"))
         print(f"wrote {a.out}/{name}.csv and {name}.png")
