@@ -437,8 +437,10 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
 #pragma omp parallel for schedule(static)
     for (long long i = 0; i < (long long)n; ++i) {
       const GrHit& hit = g.hits[i];
-      glm::vec3 value = weight * settings_.background;
-      if (hit.prim >= 0) {
+      glm::vec3 value;
+      if (hit.prim < 0) {
+        value = weight * settings_.background;
+      } else {
         const GrRay& ray = rays[i];
         const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim,
                                           ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);

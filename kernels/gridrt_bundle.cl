@@ -89,9 +89,9 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
     gr_pe_closest16(r, pe_tris, begin, end, tmin, tmax, t_enter, t_exit, active, any_hit,
                     &best_t, &best_u, &best_v, &best_prim, cull_planes, cull_stride,
                     packet_box, cull.enabled != 0.0f, &seg, seg_planes, seg_stride);
-    const int16 lane = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     m.hit = gr_store_packet_hits(best_t, best_prim, best_u, best_v, results, (size_t)lanes, out,
-                                 interrupt, first_hit_key, (int16)first + lane, t_enter);
+                                 interrupt, first_hit_key, (int16)first + GR_LANE_INDEX16,
+                                 t_enter);
   }
   m.pierced = gr_lane_bits16(pierced);
   m.skipped = gr_lane_bits16(skipped);
@@ -115,7 +115,6 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
   const float loz = grid.minz + (float)vz * grid.cellz, hiz = grid.minz + (float)(vz + 1) * grid.cellz;
   const int begin = pe_tri_begin[task.pe], end = pe_tri_begin[task.pe + 1];
   const int packets = (task.ray_count + LANES - 1) / LANES;
-  const int16 lane = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
   /* Packet culling needs a common origin; rays with their own origins use segment
    * culling instead. */
   GrCullFrame no_cull = cull;
@@ -125,7 +124,7 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
     const int first = task.first_ray + p * LANES;
     const int out = task.out_first + p * LANES;
     /* Lanes past the task's end read the next rays of the bundle and are masked off. */
-    const int16 in_task = lane < (int16)(task.ray_count - p * LANES);
+    const int16 in_task = GR_LANE_INDEX16 < (int16)(task.ray_count - p * LANES);
     GrRays16 r;
     r.dx = vload16(0, planes + GR_PLANE_DX * stride + first);
     r.dy = vload16(0, planes + GR_PLANE_DY * stride + first);

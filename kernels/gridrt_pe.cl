@@ -50,8 +50,7 @@ void gridrt_pe(__global const GrPeTask* tasks, __global const float* pairs,
   const int16 ray16 = as_int16(gr_pair_plane16(packet, GR_PAIR_RAY));
   int ray_of[LANES];
   vstore16(ray16, 0, ray_of);
-  const int16 lane_index = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  const int16 pierced = lane_index < (int16)lanes;
+  const int16 pierced = GR_LANE_INDEX16 < (int16)lanes;
   int16 active = pierced, skipped = (int16)0;
   if (interrupt) {
     int key[LANES];

@@ -15,10 +15,13 @@
 #include "gridrt_types.h"
 #include "ray_triangle16.h"
 
+/* Each lane's own index, 0 .. 15. */
+#define GR_LANE_INDEX16 ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
+
 /* The lanes of a mask (-1 per lane) as 16 bits, lane k in bit k. OpenCL C 1.2 has no
  * horizontal reduction: the disjoint bits are folded by halves. */
 inline int gr_lane_bits16(int16 mask) {
-  int16 b = mask & ((int16)1 << (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
+  int16 b = mask & ((int16)1 << GR_LANE_INDEX16);
   int8 b8 = b.lo | b.hi;
   int4 b4 = b8.lo | b8.hi;
   int2 b2 = b4.lo | b4.hi;
