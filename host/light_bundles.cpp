@@ -71,6 +71,13 @@ void FaceWindow::cellRange(float lo, float hi, float origin, float scale, int& c
   c1 = std::min(res, int(cell(hi)) + 1);
 }
 
+float missOfLight(const GrRay& ray, const glm::vec3& light) {
+  const glm::vec3 end = glm::vec3(ray.ox, ray.oy, ray.oz) + ray.tmax * glm::vec3(ray.dx, ray.dy, ray.dz);
+  const float reach = std::max({std::fabs(ray.ox), std::fabs(ray.oy), std::fabs(ray.oz)}) + ray.tmax;
+  return glm::length(end - light) +
+         kLightEndRoundingEpsilons * std::numeric_limits<float>::epsilon() * reach;
+}
+
 void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRay* rays,
                      size_t count, RayBundles& bundles, LightBundleScratch& scratch) {
   // Each ray's face and point on it, the faces' occupied windows, and how far the rays'
@@ -88,10 +95,7 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
     for (long long r = 0; r < (long long)count; ++r) {
       const GrRay& ray = rays[r];
       const glm::vec3 d(ray.dx, ray.dy, ray.dz);
-      const glm::vec3 end = glm::vec3(ray.ox, ray.oy, ray.oz) + ray.tmax * d;
-      const float reach = std::max({std::fabs(ray.ox), std::fabs(ray.oy), std::fabs(ray.oz)}) + ray.tmax;
-      const float off = glm::length(end - light) +
-                        kLightEndRoundingEpsilons * std::numeric_limits<float>::epsilon() * reach;
+      const float off = missOfLight(ray, light);
       miss = std::max(miss, std::isfinite(off) ? off : INFINITY);
       int face = 0;
       float u = 0.0f, v = 0.0f;

@@ -76,6 +76,10 @@ struct LightBundleScratch {
   std::vector<Run> sorted;
 };
 
+// A bound on how far the exact end o + tmax * d of `ray` lies from `light`: the distance
+// of its float end plus kLightEndRoundingEpsilons of its rounding (infinite rays: inf).
+float missOfLight(const GrRay& ray, const glm::vec3& light);
+
 void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRay* rays,
                      size_t count, RayBundles& bundles, LightBundleScratch& scratch);
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "light_bundles.h"
 
@@ -79,6 +80,34 @@ TEST(LightBundles, CellRangeMarginStaysBelowACell) {
   w.cellRange(5.0f, 1e30f, w.u0, w.su, c0, c1);  // right of the window: nothing
   EXPECT_EQ(c0, 64);
   EXPECT_EQ(c1, 64);
+}
+
+// The slack of light bundles must bound how far each ray's exact end o + tmax * d lies
+// from the light. Rays built so that their float end is the light itself (o = -(tmax * d)
+// in float, the light at the origin) still miss it by the rounding of tmax * d: their
+// measured distance is 0, and only the rounding term (kLightEndRoundingEpsilons) covers
+// them. Without it every one of these rays falls short.
+TEST(LightBundles, MissOfLightBoundsTheExactEndsDistance) {
+  const glm::vec3 light(0.0f);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), length(1.0f, 1000.0f);
+  int float_end_on_light = 0, short_of_exact = 0;
+  for (int k = 0; k < 10000; ++k) {
+    const glm::vec3 d = glm::normalize(glm::vec3(unit(rng), unit(rng), unit(rng)));
+    const float tmax = length(rng);
+    const glm::vec3 step = tmax * d;
+    const GrRay ray{-step.x, -step.y, -step.z, 0.0f, d.x, d.y, d.z, tmax};
+    const glm::vec3 float_end = glm::vec3(ray.ox, ray.oy, ray.oz) + ray.tmax * d;
+    float_end_on_light += float_end == light;
+    // The exact end, in double (a float product is exact there; the sum rounds far below).
+    const double ex = double(ray.ox) + double(tmax) * double(d.x);
+    const double ey = double(ray.oy) + double(tmax) * double(d.y);
+    const double ez = double(ray.oz) + double(tmax) * double(d.z);
+    const double exact_miss = std::sqrt(ex * ex + ey * ey + ez * ez);
+    short_of_exact += double(missOfLight(ray, light)) < exact_miss;
+  }
+  EXPECT_EQ(float_end_on_light, 10000);
+  EXPECT_EQ(short_of_exact, 0);
 }
 
 }  // namespace
