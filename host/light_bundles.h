@@ -77,7 +77,8 @@ struct LightBundleScratch {
 };
 
 // A bound on how far the exact end o + tmax * d of `ray` lies from `light`: the distance
-// of its float end plus kLightEndRoundingEpsilons of its rounding (infinite rays: inf).
+// of its float end plus kLightEndRoundingEpsilons of its rounding (not finite for a ray
+// without an end; the caller counts that as an infinite miss).
 float missOfLight(const GrRay& ray, const glm::vec3& light);
 
 void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRay* rays,
