@@ -10,17 +10,18 @@ static_assert(kTileSize * kTileSize == kBundleLanes, "a tile is one packet");
 
 namespace {
 
-// The box's corners in continuous pixel coordinates (pixel (i, j)'s centre ray at (i, j));
-// false when a corner lies at or behind the camera plane (the footprint is unbounded).
+// The box's corners in continuous pixel coordinates (pixel (i, j)'s centre ray at (i, j)),
+// in double through the exact inverse of the camera's matrix; false when a corner lies at
+// or behind the camera plane (the footprint is unbounded).
 bool projectCorners(const PinholeView& v, const glm::vec3& lo, const glm::vec3& hi,
-                    glm::vec2 (&corners)[8]) {
+                    glm::dvec2 (&corners)[8]) {
+  const double tan_half = v.tan_half, aspect = v.aspect;
   for (int c = 0; c < 8; ++c) {
-    glm::vec3 corner(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
-    glm::vec4 p = v.world_to_camera * glm::vec4(corner, 1.0f);
-    if (!(p.z < 0.0f)) return false;
-    float x = p.x / (-p.z) / (v.tan_half * v.aspect), y = p.y / (-p.z) / v.tan_half;
-    corners[c] = glm::vec2((x + 1.0f) * 0.5f * float(v.width) - 0.5f,
-                           (1.0f - y) * 0.5f * float(v.height) - 0.5f);
+    glm::dvec3 corner(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+    glm::dvec4 p = v.exact_world_to_camera * glm::dvec4(corner, 1.0);
+    if (!(p.z < 0.0)) return false;
+    double x = p.x / (-p.z) / (tan_half * aspect), y = p.y / (-p.z) / tan_half;
+    corners[c] = glm::dvec2((x + 1.0) * 0.5 * v.width - 0.5, (1.0 - y) * 0.5 * v.height - 0.5);
   }
   return true;
 }
@@ -32,19 +33,19 @@ constexpr int kBoxEdges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3}
 // The x extent of the projected box (the convex hull of its corners, whose boundary is
 // made of projected edges) inside the rows a <= y <= b: the corners in the band and the
 // points where edges cross its two lines. Empty (lo > hi) if the hull misses the band.
-void extentInBand(const glm::vec2 (&c)[8], float a, float b, float& lo, float& hi) {
+void extentInBand(const glm::dvec2 (&c)[8], double a, double b, double& lo, double& hi) {
   lo = INFINITY;
   hi = -INFINITY;
-  for (const glm::vec2& p : c)
+  for (const glm::dvec2& p : c)
     if (p.y >= a && p.y <= b) {
       lo = std::min(lo, p.x);
       hi = std::max(hi, p.x);
     }
   for (const auto& e : kBoxEdges) {
-    const glm::vec2 &p = c[e[0]], &q = c[e[1]];
-    for (float y : {a, b})
-      if ((p.y - y) * (q.y - y) < 0.0f) {
-        float x = p.x + (q.x - p.x) * ((y - p.y) / (q.y - p.y));
+    const glm::dvec2 &p = c[e[0]], &q = c[e[1]];
+    for (double y : {a, b})
+      if ((p.y - y) * (q.y - y) < 0.0) {
+        double x = p.x + (q.x - p.x) * ((y - p.y) / (q.y - p.y));
         lo = std::min(lo, x);
         hi = std::max(hi, x);
       }
@@ -52,6 +53,15 @@ void extentInBand(const glm::vec2 (&c)[8], float a, float b, float& lo, float& h
 }
 
 }  // namespace
+
+double cameraOutlineMargin(const PinholeView& view) {
+  const double tan_half = view.tan_half, aspect = view.aspect;
+  const double stretch = 1.0 + tan_half * tan_half * (aspect * aspect + 1.0);
+  const double pixels_per_radian =
+      std::max(view.width / (2.0 * tan_half * aspect), view.height / (2.0 * tan_half));
+  const double size = std::max(view.width, view.height);
+  return kCameraOutlineEpsilons * 0x1p-24 * (size + stretch * pixels_per_radian);
+}
 
 void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundles& bundles,
                       bool near_first, CameraBundleScratch& scratch) {
@@ -77,10 +87,11 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   }
 
   // Per PE and tile row, the run of tiles whose pixel centres may see the voxel: the
-  // projected box's extent in the row band, one pixel wider on every side against the
-  // rounding of the projection (its error is a few ulps of the pixel coordinates).
+  // projected box's extent in the row band, grown on every side by cameraOutlineMargin
+  // against the rounding of the rays (camera_bundles.h).
   // With near_first, PEs nearest the eye first (their tasks come first in every tile
   // row), so that with the interrupt a PE behind a hit finds it already reported.
+  const double margin = cameraOutlineMargin(view);
   const int pes = grid.peCount();
   const glm::vec3 eye = glm::vec3(glm::inverse(view.world_to_camera)[3]);
   auto& order = scratch.near_first;
@@ -107,28 +118,29 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
       const int pe = order[k].second;
       glm::vec3 lo, hi;
       grid.voxelBoxOfPe(pe, lo, hi);
-      glm::vec2 corners[8];
+      glm::dvec2 corners[8];
       if (!projectCorners(view, lo, hi, corners)) {
         for (int ty = 0; ty < tiles_y; ++ty) runs.push_back(TileRun{pe, ty, 0, tiles_x});
         continue;
       }
-      float ymin = INFINITY, ymax = -INFINITY;
-      for (const glm::vec2& c : corners) {
+      double ymin = INFINITY, ymax = -INFINITY;
+      for (const glm::dvec2& c : corners) {
         ymin = std::min(ymin, c.y);
         ymax = std::max(ymax, c.y);
       }
-      // Tile rows in reach (float clamps first: a corner near the camera plane projects
-      // far outside int range).
-      auto clampTo = [](float x, int a, int b) { return int(std::max(float(a), std::min(float(b), x))); };
-      const int ty0 = clampTo(std::floor((ymin - 1.0f - float(win.y0)) / kTileSize), 0, tiles_y);
-      const int ty1 = clampTo(std::floor((ymax + 1.0f - float(win.y0)) / kTileSize) + 1.0f, 0, tiles_y);
+      // Tile rows in reach (clamped in double first: a corner near the camera plane
+      // projects far outside int range).
+      auto clampTo = [](double x, int a, int b) { return int(std::max(double(a), std::min(double(b), x))); };
+      const int ty0 = clampTo(std::floor((ymin - margin - win.y0) / kTileSize), 0, tiles_y);
+      const int ty1 = clampTo(std::floor((ymax + margin - win.y0) / kTileSize) + 1.0, 0, tiles_y);
       for (int ty = ty0; ty < ty1; ++ty) {
-        float a = float(win.y0 + ty * kTileSize) - 1.0f, b = a + float(kTileSize - 1) + 2.0f;
-        float x0, x1;
+        const double a = double(win.y0 + ty * kTileSize) - margin;
+        const double b = double(win.y0 + ty * kTileSize + kTileSize - 1) + margin;
+        double x0, x1;
         extentInBand(corners, a, b, x0, x1);
         if (!(x0 <= x1)) continue;
-        int tx0 = clampTo(std::floor((x0 - 1.0f - float(win.x0)) / kTileSize), 0, tiles_x);
-        int tx1 = clampTo(std::floor((x1 + 1.0f - float(win.x0)) / kTileSize) + 1.0f, 0, tiles_x);
+        int tx0 = clampTo(std::floor((x0 - margin - win.x0) / kTileSize), 0, tiles_x);
+        int tx1 = clampTo(std::floor((x1 + margin - win.x0) / kTileSize) + 1.0, 0, tiles_x);
         if (tx0 < tx1) runs.push_back(TileRun{pe, ty, tx0, tx1});
       }
     }

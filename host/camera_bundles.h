@@ -29,6 +29,18 @@ struct CameraBundleScratch {
   int layout_width = 0, layout_height = 0;        // the window RayBundles::ray_of is for
 };
 
+// How far (in pixels) a voxel's projected outline is grown on every side, so that every
+// pixel whose float centre ray the kernel's slab test lets into the voxel is in a tile of
+// its footprint. The outline is exact (double); the rays are not: a centre ray's
+// direction lies a dozen roundings of unit-size values from its pixel's exact direction,
+// its pixel coordinate a few roundings of the image size from the pixel's, and the slab
+// test passes rays a few roundings (relative to t) outside the box, an angle of a few
+// epsilons from the eye. Angles become pixels at the image corner's gnomonic stretch
+// (1 + tan^2 (aspect^2 + 1)) times the pixels per radian at the centre. Budget, in float
+// epsilons (2^-24) of both: 64, about four times the sum (tests/camera_bundles_test.cpp).
+constexpr double kCameraOutlineEpsilons = 64.0;
+double cameraOutlineMargin(const PinholeView& view);
+
 // near_first: tasks of nearer PEs first in every tile row (for the interrupt).
 void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundles& bundles,
                       bool near_first, CameraBundleScratch& scratch);
