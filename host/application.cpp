@@ -275,7 +275,11 @@ int runApplication(const Options& o) {
   clock.restart();
   UniformGrid grid;
   bool uses_grid = o.accel == AccelKind::GridRt || o.accel == AccelKind::Dda;
-  if (uses_grid) grid = buildUniformGrid(triangles, sceneBounds(scene), o.grid);
+  if (uses_grid) {
+    GridSettings settings = o.grid;
+    settings.ray_origins = primaryRayOrigins(camera, o.width, o.height);
+    grid = buildUniformGrid(triangles, sceneBounds(scene), settings);
+  }
   double build_ms = clock.ms();
 
   clock.restart();

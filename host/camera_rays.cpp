@@ -87,6 +87,24 @@ void CameraRayGenerator::centreWindow(const PixelWindow& window, GrRay* out) con
     centreRow(y, window.x0, window.x1, out + size_t(y - window.y0) * window.width());
 }
 
+Bounds primaryRayOrigins(const Camera& camera, int width, int height) {
+  Bounds b;
+  if (!camera.orthographic) {
+    b.grow(glm::vec3(camera.world[3]));
+    return b;
+  }
+  // The image rectangle's corners, (i, j) = (0 or width, 0 or height) at offset 0: each
+  // origin coordinate is a rounded sum of rounded products, monotone in the pixel's x
+  // and in its y, so the corners bound every origin, rounding included.
+  const CameraRayGenerator rays(camera, width, height);
+  for (int j : {0, height})
+    for (int i : {0, width}) {
+      const GrRay r = rays(i, j, 0.0f, 0.0f);
+      b.grow(glm::vec3(r.ox, r.oy, r.oz));
+    }
+  return b;
+}
+
 GrRay cameraRay(const Camera& camera, int width, int height, int i, int j, float sx, float sy) {
   return CameraRayGenerator(camera, width, height)(i, j, sx, sy);
 }

@@ -65,6 +65,11 @@ inline GrRay CameraRayGenerator::operator()(int i, int j, float sx, float sy) co
                std::numeric_limits<float>::infinity()};
 }
 
+// A box holding the origin of every primary ray of the camera: its eye, or for an
+// orthographic camera its image rectangle (the grid's margin scales with it,
+// GridSettings::ray_origins).
+Bounds primaryRayOrigins(const Camera& camera, int width, int height);
+
 // One ray, for callers that need a few (same result as CameraRayGenerator).
 GrRay cameraRay(const Camera& camera, int width, int height, int i, int j, float sx, float sy);
 

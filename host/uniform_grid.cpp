@@ -77,9 +77,13 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
   Bounds box = bounds;
   if (box.empty()) box.lo = box.hi = glm::vec3(0.0f);
   glm::dvec3 lo(box.lo), hi(box.hi);
-  double scale = std::max({std::fabs(lo.x), std::fabs(lo.y), std::fabs(lo.z), std::fabs(hi.x),
-                           std::fabs(hi.y), std::fabs(hi.z)}) +
-                 glm::length(hi - lo);
+  Bounds reach = box;  // the scene and the points rays start from
+  if (!settings.ray_origins.empty()) {
+    reach.grow(settings.ray_origins.lo);
+    reach.grow(settings.ray_origins.hi);
+  }
+  const glm::dvec3 far = glm::max(glm::abs(glm::dvec3(reach.lo)), glm::abs(glm::dvec3(reach.hi)));
+  double scale = std::max({far.x, far.y, far.z}) + glm::length(hi - lo);
   // A positive floor keeps the cells non-zero even for a scene collapsed to one point.
   grid.margin = std::max(settings.margin_rel * scale, 1e-30);
   glm::dvec3 gmin = lo - grid.margin;

@@ -26,7 +26,8 @@ constexpr float kDefaultGridDensity = 0.1f;
 // That makes the grid conservative against float rounding of hit points (MT's t and the
 // DDA's boundary t differ from exact values by a few ulps of the coordinates): a hit
 // computed just past a voxel boundary is still found by the voxel it is assigned to.
-// Relative to the largest coordinate magnitude plus the diagonal: ~170 float ulps.
+// Relative to the largest coordinate magnitude (of the scene and of where rays start)
+// plus the diagonal: ~170 float ulps.
 constexpr double kGridMarginRel = 1e-5;
 
 // Upper bounds that keep the grid's memory sane whatever the density asks for.
@@ -38,6 +39,10 @@ struct GridSettings {
   float density = kDefaultGridDensity;
   glm::ivec3 dims{1, 1, 1};       // used when !automatic
   double margin_rel = kGridMarginRel;  // tests set 0 to show what the margin prevents
+  // Where rays start outside the scene's box (the camera: primaryRayOrigins). A hit's
+  // rounding grows with its ray's origin as much as with the scene's coordinates, so
+  // the margin's scale takes these points' coordinates too. Empty: the scene's only.
+  Bounds ray_origins;
 };
 
 struct UniformGrid {

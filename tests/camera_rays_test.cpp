@@ -44,5 +44,31 @@ TEST(CameraRays, CentreRowOfAnOrthographicCameraEqualsPerPixelRays) {
   for (int i = 0; i < 40; ++i) EXPECT_TRUE(sameBits(row[i], generate(i, 7, 0.5f, 0.5f))) << i;
 }
 
+// The grid's margin scales with where rays start (GridSettings::ray_origins): the box
+// must hold every primary ray's origin, jittered samples included, for a pinhole camera
+// (its eye) and an orthographic one (its whole image rectangle).
+TEST(CameraRays, PrimaryRayOriginsHoldEveryRaysOrigin) {
+  Camera pinhole = lookAtCamera({1e3f, -20, 7}, {0, 0, 0}, 0.7f);
+  Camera ortho = lookAtCamera({3, 4, 50}, {0, 1, 0}, 1.0f);
+  ortho.orthographic = true;
+  ortho.ymag = 6.0f;
+  for (const Camera* camera : {&pinhole, &ortho}) {
+    const int w = 37, h = 23;
+    const Bounds box = primaryRayOrigins(*camera, w, h);
+    const CameraRayGenerator generate(*camera, w, h);
+    int outside = 0;
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i)
+        for (uint32_t s = 0; s < 4; ++s) {
+          float sx, sy;
+          jitter(uint32_t(j * w + i), s, sx, sy);
+          const GrRay r = generate(i, j, sx, sy);
+          outside += !(r.ox >= box.lo.x && r.ox <= box.hi.x && r.oy >= box.lo.y &&
+                       r.oy <= box.hi.y && r.oz >= box.lo.z && r.oz <= box.hi.z);
+        }
+    EXPECT_EQ(outside, 0) << (camera->orthographic ? "orthographic" : "pinhole");
+  }
+}
+
 }  // namespace
 }  // namespace gridrt
