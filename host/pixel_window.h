@@ -12,6 +12,7 @@ struct PixelWindow {
   bool operator==(const PixelWindow& o) const {
     return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1;
   }
+  bool operator!=(const PixelWindow& o) const { return !(*this == o); }
 };
 
 }  // namespace gridrt

@@ -253,7 +253,7 @@ void Renderer::renderInBands(Frame& frame, const PixelWindow& window, int spp, f
   for (int band = 0; band < bands; ++band) {
     const PixelWindow part{window.x0, window.y0 + band * rows, window.x1,
                            std::min(window.y1, window.y0 + (band + 1) * rows)};
-    if (window_pixels_width_ != settings_.width || !(window_pixels_band_ == part)) {
+    if (window_pixels_width_ != settings_.width || window_pixels_band_ != part) {
       window_pixels_.resize(size_t(part.width()) * part.height());
 #pragma omp parallel for schedule(static)
       for (int y = part.y0; y < part.y1; ++y)
