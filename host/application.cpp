@@ -34,22 +34,32 @@ namespace gridrt {
 namespace {
 
 [[noreturn]] void refuseImage(const Options& o, double bytes, double limit_bytes, const char* where) {
-  throw RenderError("image " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+  const std::string window =
+      o.crop ? " (window " + std::to_string(o.crop->x0) + "," + std::to_string(o.crop->y0) + "," +
+                   std::to_string(o.crop->x1) + "," + std::to_string(o.crop->y1) +
+                   (o.crop_output == CropOutput::Full ? ", written full size)" : ")")
+             : "";
+  throw RenderError("image " + std::to_string(o.width) + "x" + std::to_string(o.height) + window +
                     " at " + std::to_string(o.spp) + " spp needs about " +
                     std::to_string((long long)(bytes / (1 << 20))) + " MiB, more than the " +
                     std::to_string((long long)(limit_bytes / (1 << 20))) + " MiB of " + where);
+}
+
+MemoryEstimate estimateOf(const Options& o) {
+  return estimateMemory(o.width, o.height, o.spp, o.crop ? *o.crop : PixelWindow{},
+                        o.crop_output == CropOutput::Full);
 }
 
 // Checked before the scene is loaded or a device opened, so that an absurd size fails at
 // once (gridrt --width 65536 --height 65536) and nothing is allocated for it.
 void checkImageFitsHost(const Options& o) {
   const double host = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-  const double need = estimateMemory(o.width, o.height, o.spp).host_bytes;
+  const double need = estimateOf(o).host_bytes;
   if (need > host) refuseImage(o, need, host, "host memory");
 }
 
 void checkImageFitsDevice(const Options& o, const DeviceInfo& device) {
-  const double need = estimateMemory(o.width, o.height, o.spp).device_bytes;
+  const double need = estimateOf(o).device_bytes;
   if (need > double(device.global_mem_bytes))
     refuseImage(o, need, double(device.global_mem_bytes), "device memory");
 }
@@ -121,17 +131,17 @@ std::vector<float> aovData(const PrimaryAovs& a, const std::string& name, int& c
   return a.list_length;
 }
 
-// Writes one full-size image or AOV, honouring --crop: without it the data as rendered;
-// with --crop-output full, zeros outside the window; with window, the window alone at its
-// offset (host/window_output.h).
+// Writes one image or AOV, honouring --crop: the renderer's film holds the window's pixels
+// (the whole image without --crop); with --crop-output full they are placed in a
+// full-size image, zero outside; with window, the window alone at its offset
+// (host/window_output.h).
 void writeCropped(const Options& o, const std::string& path, int channels,
                   std::vector<float> data, OutputKind kind) {
   if (o.crop && o.crop_output == CropOutput::Window) {
-    writeWindowImage(path, *o.crop, o.width, o.height, channels,
-                     cutWindow(data, o.width, channels, *o.crop));
+    writeWindowImage(path, *o.crop, o.width, o.height, channels, data);
     return;
   }
-  if (o.crop) zeroOutsideWindow(data, o.width, o.height, channels, *o.crop);
+  if (o.crop) data = placeWindow(data, o.width, o.height, channels, *o.crop);
   if (kind == OutputKind::Image)
     writeImage(path, Film{o.width, o.height, std::move(data)});
   else

@@ -30,24 +30,13 @@ PixelWindow parseCropWindow(const std::string& text, int width, int height) {
   return w;
 }
 
-void zeroOutsideWindow(std::vector<float>& data, int width, int height, int channels,
-                       const PixelWindow& window) {
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x)
-      if (x < window.x0 || x >= window.x1 || y < window.y0 || y >= window.y1) {
-        float* p = data.data() + (size_t(y) * width + x) * channels;
-        std::fill(p, p + channels, 0.0f);
-      }
-}
-
-std::vector<float> cutWindow(const std::vector<float>& data, int width, int channels,
-                             const PixelWindow& window) {
-  std::vector<float> out;
-  out.reserve(size_t(window.width()) * window.height() * channels);
-  for (int y = window.y0; y < window.y1; ++y) {
-    auto row = data.begin() + (size_t(y) * width + window.x0) * channels;
-    out.insert(out.end(), row, row + size_t(window.width()) * channels);
-  }
+std::vector<float> placeWindow(const std::vector<float>& window_data, int width, int height,
+                               int channels, const PixelWindow& window) {
+  std::vector<float> out(size_t(width) * height * channels, 0.0f);
+  const size_t row = size_t(window.width()) * channels;
+  for (int y = window.y0; y < window.y1; ++y)
+    std::copy_n(window_data.begin() + size_t(y - window.y0) * row, row,
+                out.begin() + (size_t(y) * width + window.x0) * channels);
   return out;
 }
 

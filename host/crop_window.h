@@ -4,7 +4,8 @@
 // the full render bit for bit, because each pixel's rays do not depend on the window.
 //
 // The window itself is the Renderer's PixelWindow (RenderSettings::crop traces only its
-// rays); this file parses it and cuts or masks rendered images to it.
+// rays, and its film holds the window's pixels alone); this file parses it and places a
+// rendered window in the full image.
 #pragma once
 #include <string>
 #include <vector>
@@ -25,13 +26,10 @@ bool keepsDataWindow(const std::string& path);
 // Throws UsageError naming the flag and the problem.
 PixelWindow parseCropWindow(const std::string& text, int width, int height);
 
-// Sets every value of pixels outside `window` to zero, in place. `data` is row-major,
-// width x height pixels of `channels` interleaved values.
-void zeroOutsideWindow(std::vector<float>& data, int width, int height, int channels,
-                       const PixelWindow& window);
-
-// The values of the pixels inside `window`, row-major, window.width() x window.height().
-std::vector<float> cutWindow(const std::vector<float>& data, int width, int channels,
-                             const PixelWindow& window);
+// The window's pixels (row-major, window.width() x window.height() pixels of `channels`
+// interleaved values, as the renderer's film holds them) placed in a width x height image,
+// zero outside the window.
+std::vector<float> placeWindow(const std::vector<float>& window_data, int width, int height,
+                               int channels, const PixelWindow& window);
 
 }  // namespace gridrt

@@ -1,8 +1,11 @@
 // The memory a render needs, estimated before anything is allocated, so that an image
 // that cannot fit is refused at once with a one-line error instead of failing part way.
-// A frame is rendered in passes (renderer.h, kMaxPassRays): the image's own arrays grow
-// with its pixels, the wavefront's only with the samples of one pass.
+// A frame is rendered in passes (renderer.h, kMaxPassRays): the film's own arrays grow
+// with its pixels (the crop window's, with --crop), the wavefront's only with the samples
+// of one pass.
 #pragma once
+
+#include "pixel_window.h"
 
 namespace gridrt {
 
@@ -12,6 +15,10 @@ struct MemoryEstimate {
   double device_bytes = 0;  // one pass's rays and results
 };
 
-MemoryEstimate estimateMemory(int width, int height, int spp);
+// A width x height image, or with `crop` its window alone (the film holds the window's
+// pixels); `full_size_output` places a cropped film in a full-size image to write it
+// (--crop-output full), which costs the full image's pixels once more.
+MemoryEstimate estimateMemory(int width, int height, int spp, const PixelWindow& crop = {},
+                              bool full_size_output = true);
 
 }  // namespace gridrt

@@ -172,15 +172,21 @@ void Renderer::tracePrimary(const PixelWindow& window, std::vector<GrHit>& hits,
 void Renderer::render(Frame& frame, const std::function<void(int, int)>& progress) {
   Stopwatch frame_clock;
   const int w = settings_.width, h = settings_.height;
-  const size_t pixels = size_t(w) * h;
+  // The film holds the window's pixels alone (the whole image without a crop), so a tile
+  // of a large image needs the memory of the tile: pixel (x, y) is film pixel
+  // (y - win.y0) * fw + (x - win.x0).
+  const PixelWindow win = settings_.crop.whole() ? PixelWindow{0, 0, w, h} : settings_.crop;
+  film_window_ = win;
+  const int fw = win.width(), fh = win.height();
+  const size_t pixels = size_t(fw) * fh;
   frame.rays = RayCounts{};
   frame.times = FrameTimes{};
   frame.refined_pixels = 0;
   frame.passes = 0;
   radiance_.resize(pixels);
 #pragma omp parallel for schedule(static)
-  for (int y = 0; y < h; ++y)
-    std::fill(radiance_.begin() + size_t(y) * w, radiance_.begin() + size_t(y + 1) * w, glm::vec3(0.0f));
+  for (int y = 0; y < fh; ++y)
+    std::fill(radiance_.begin() + size_t(y) * fw, radiance_.begin() + size_t(y + 1) * fw, glm::vec3(0.0f));
   if (settings_.want_aovs || settings_.want_diagnostics) {
     const bool diag = settings_.want_diagnostics;
     PrimaryAovs& a = frame.aovs;
@@ -191,7 +197,6 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     a.pe.assign(diag ? pixels : 0, -1.0f);
     a.list_length.assign(diag ? pixels : 0, 0.0f);
   }
-  const PixelWindow win = settings_.crop.whole() ? PixelWindow{0, 0, w, h} : settings_.crop;
 
   if (!settings_.adaptive_aa) {
     const int spp = std::max(1, settings_.spp);
@@ -205,10 +210,10 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
       glm::vec3 d = glm::abs(radiance_[p] - radiance_[q]);
       return std::max({d.x, d.y, d.z}) > settings_.aa_threshold;
     };
-    for (int y = win.y0; y < win.y1; ++y)
-      for (int x = win.x0, p = y * w + x; x < win.x1; ++x, ++p)
-        if ((x > win.x0 && differs(p, p - 1)) || (x + 1 < win.x1 && differs(p, p + 1)) ||
-            (y > win.y0 && differs(p, p - w)) || (y + 1 < win.y1 && differs(p, p + w)))
+    for (int y = 0; y < fh; ++y)
+      for (int x = 0, p = y * fw; x < fw; ++x, ++p)
+        if ((x > 0 && differs(p, p - 1)) || (x + 1 < fw && differs(p, p + 1)) ||
+            (y > 0 && differs(p, p - fw)) || (y + 1 < fh && differs(p, p + fw)))
           refine.push_back(p);
     const int extra = std::max(1, settings_.aa_samples);
     const float keep = 1.0f / float(extra + 1);
@@ -225,8 +230,8 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     }
   }
 
-  frame.film.width = w;
-  frame.film.height = h;
+  frame.film.width = fw;
+  frame.film.height = fh;
   frame.film.rgb.resize(pixels * 3);
 #pragma omp parallel for schedule(static)
   for (long long p = 0; p < (long long)pixels; ++p)
@@ -258,7 +263,8 @@ void Renderer::renderInBands(Frame& frame, const PixelWindow& window, int spp, f
 #pragma omp parallel for schedule(static)
       for (int y = part.y0; y < part.y1; ++y)
         for (int x = part.x0; x < part.x1; ++x)
-          window_pixels_[size_t(y - part.y0) * part.width() + (x - part.x0)] = y * settings_.width + x;
+          window_pixels_[size_t(y - part.y0) * part.width() + (x - part.x0)] =
+              (y - film_window_.y0) * film_window_.width() + (x - film_window_.x0);
       window_pixels_band_ = part;
       window_pixels_width_ = settings_.width;
     }
@@ -287,10 +293,12 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   } else {
 #pragma omp parallel for schedule(static)
   for (long long k = 0; k < (long long)rendered; ++k) {
-    const int p = window_pixels_[k], x = p % w, y = p / w;
+    const int f = window_pixels_[k], fw = film_window_.width();
+    const int x = film_window_.x0 + f % fw, y = film_window_.y0 + f / fw;
+    const uint32_t p = uint32_t(y) * uint32_t(w) + uint32_t(x);  // the jitter's key: the image's pixel
     for (int s = 0; s < spp; ++s) {
       float sx = 0.5f, sy = 0.5f;
-      if (!centre_only) jitter(uint32_t(p), uint32_t(first_sample + s), sx, sy);
+      if (!centre_only) jitter(p, uint32_t(first_sample + s), sx, sy);
       size_t r = size_t(k) * spp + s;
       primary_rays_[r] = camera_rays(x, y, sx, sy);
     }

@@ -36,7 +36,7 @@ struct RenderSettings {
   RayOffset ray_offset;   // how secondary ray origins leave the surface
   bool want_aovs = true;          // fill the depth / primid / normal AOVs of primary rays
   bool want_diagnostics = false;  // fill tests / PE / list-length AOVs of primary rays
-  PixelWindow crop;  // render only these pixels (the film stays full size, zero outside)
+  PixelWindow crop;  // render only these pixels (the film and AOVs hold the window alone)
   // Adaptive supersampling (--aa adaptive): centres first, then aa_samples jittered samples
   // where a pixel differs from a 4-neighbour by more than aa_threshold (any channel).
   bool adaptive_aa = false;
@@ -74,7 +74,7 @@ struct FrameTimes {
 };
 
 struct Frame {
-  Film film;
+  Film film;  // the crop window's pixels (RenderSettings::crop), or the whole image
   PrimaryAovs aovs;
   RayCounts rays;
   FrameTimes times;
@@ -160,7 +160,7 @@ class Renderer {
   // renderer would: each depth's own radiance, then its shadow rays that reached their
   // light (so every pixel's sum is the same, bit for bit).
   void addPassRadiance(int depths, PrimaryPaths primary);
-  // The AOVs of window_pixels_ (the arrays sized for the image by render).
+  // The AOVs of window_pixels_ (the arrays sized for the film by render).
   void fillPrimaryAovs(PrimaryAovs& aovs, const std::vector<GrHit>& hits,
                        const RayDiagnostics& diagnostics, int spp);
   struct Spawned;
@@ -219,14 +219,17 @@ class Renderer {
   std::vector<size_t> light_ray_index_;  // ... and their indices in the shadow rays
   std::vector<Spawned> spawned_;
   std::vector<size_t> chunk_offsets_;  // where each chunk's output starts (concatenateChunks)
-  std::vector<int> window_pixels_;  // full-image index of each rendered pixel
+  // The pixels the film holds (the crop window, or the whole image) and, per rendered
+  // pixel, its film index.
+  PixelWindow film_window_;
+  std::vector<int> window_pixels_;
   // The band window_pixels_ holds (renderInBands keeps it from frame to frame), and the
   // image width it was made for; width 0 when it holds something else.
   PixelWindow window_pixels_band_;
   int window_pixels_width_ = 0;
   std::vector<int> block_order_;    // the window's pixels in 4x4 blocks (pixel_blocks.h)
   int block_order_width_ = 0, block_order_height_ = 0;  // the window block_order_ is for
-  std::vector<glm::vec3> radiance_;  // per pixel accumulator
+  std::vector<glm::vec3> radiance_;  // per film pixel accumulator
 };
 
 }  // namespace gridrt

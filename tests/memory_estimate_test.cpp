@@ -32,5 +32,18 @@ TEST(MemoryEstimate, AbsurdImagesStayRefused) {
   EXPECT_GT(estimateMemory(65536, 4, 4096).device_bytes, 64.0 * kGiB);
 }
 
+// With --crop the film holds the window alone: a window of a huge image needs the memory
+// of the window, unless it is written at full size (the placed copy: the full image's
+// pixels once more).
+TEST(MemoryEstimate, ACropWindowNeedsTheMemoryOfItsWindow) {
+  const PixelWindow window{1000, 2000, 1512, 2512};
+  const MemoryEstimate tile = estimateMemory(65536, 65536, 4, window, false);
+  const MemoryEstimate alone = estimateMemory(512, 512, 4);
+  EXPECT_EQ(tile.host_bytes, alone.host_bytes);
+  EXPECT_EQ(tile.device_bytes, alone.device_bytes);
+  EXPECT_EQ(tile.pass_samples, alone.pass_samples);
+  EXPECT_GT(estimateMemory(65536, 65536, 4, window, true).host_bytes, 64.0 * kGiB);
+}
+
 }  // namespace
 }  // namespace gridrt

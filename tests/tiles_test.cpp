@@ -126,4 +126,33 @@ TEST(Tiles, OverlappingTilesAreRefused) {
   EXPECT_FALSE(std::filesystem::exists(merged));
 }
 
+// The film holds the window alone, so a tile of an image far too large for memory renders
+// in the memory of the tile: a 64x40 window of a 65536x65536 image (4.3 gigapixels,
+// ~400 GiB at full size) is written with its offset, while the same window written at full
+// size is refused before anything is rendered, with the window named.
+TEST(Tiles, ATileOfAnImageTooLargeForMemoryRenders) {
+  const std::string tile = tempPath("huge_tile.exr");
+  expectSuccess({gridrtBinary(), "-q", "--width", "65536", "--height", "65536", "--crop",
+                 "30000,30000,30064,30040", "--crop-output", "window", "-o", tile});
+  auto in = OIIO::ImageInput::open(tile);
+  ASSERT_TRUE(in) << OIIO::geterror();
+  const OIIO::ImageSpec& s = in->spec();
+  EXPECT_EQ(s.x, 30000);
+  EXPECT_EQ(s.y, 30000);
+  EXPECT_EQ(s.width, 64);
+  EXPECT_EQ(s.height, 40);
+  EXPECT_EQ(s.full_width, 65536);
+  std::vector<float> pixels(size_t(s.width) * s.height * s.nchannels);
+  ASSERT_TRUE(in->read_image(0, 0, 0, s.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
+  size_t lit = 0;
+  for (float v : pixels) lit += v > 0.0f;
+  EXPECT_GT(lit, pixels.size() / 2);  // the middle of the default scene: its back wall
+  CommandResult r = runCommand({gridrtBinary(), "-q", "--width", "65536", "--height", "65536",
+                                "--crop", "30000,30000,30064,30040", "-o",
+                                tempPath("huge_full.exr")});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("window 30000,30000,30064,30040, written full size"), std::string::npos)
+      << r.err;
+}
+
 }  // namespace
