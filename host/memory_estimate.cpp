@@ -24,7 +24,7 @@ constexpr double kFullOutputBytesPerPixel = 32.0;
 
 MemoryEstimate estimateMemory(int width, int height, int spp, const PixelWindow& crop,
                               bool full_size_output) {
-  const PixelWindow film = crop.whole() ? PixelWindow{0, 0, width, height} : crop;
+  const PixelWindow film = crop.orWholeImage(width, height);
   const double pixels = double(film.width()) * double(film.height());
   const double frame = pixels * spp, row = double(film.width()) * spp;
   MemoryEstimate m;

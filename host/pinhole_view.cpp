@@ -12,7 +12,7 @@ PinholeView PinholeView::of(const Camera& camera, int width, int height, PixelWi
   v.aspect = camera.aspect > 0.0f ? camera.aspect : float(width) / float(height);
   v.width = width;
   v.height = height;
-  v.window = window.whole() ? PixelWindow{0, 0, width, height} : window;
+  v.window = window.orWholeImage(width, height);
   return v;
 }
 

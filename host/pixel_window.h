@@ -9,6 +9,10 @@ struct PixelWindow {
   bool whole() const { return x1 == 0 && y1 == 0; }
   int width() const { return x1 - x0; }
   int height() const { return y1 - y0; }
+  // The pixels this window names in a width x height image: itself, or the whole image.
+  PixelWindow orWholeImage(int width, int height) const {
+    return whole() ? PixelWindow{0, 0, width, height} : *this;
+  }
   bool operator==(const PixelWindow& o) const {
     return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1;
   }

@@ -89,7 +89,11 @@ size_t nextSlot(std::vector<A>& a, std::vector<B>& b, size_t& count) {
 
 Renderer::Renderer(const Scene& scene, const Camera& camera, Intersector& intersector,
                    RenderSettings settings)
-    : scene_(scene), camera_(camera), intersector_(intersector), settings_(settings) {
+    : scene_(scene),
+      camera_(camera),
+      intersector_(intersector),
+      settings_(settings),
+      film_window_(settings.crop.orWholeImage(settings.width, settings.height)) {
   geometric_normals_.resize(scene.triangleCount());
   for (size_t t = 0; t < scene.triangleCount(); ++t) {
     glm::vec3 n = glm::cross(scene.positions[3 * t + 1] - scene.positions[3 * t],
@@ -171,12 +175,10 @@ void Renderer::tracePrimary(const PixelWindow& window, std::vector<GrHit>& hits,
 
 void Renderer::render(Frame& frame, const std::function<void(int, int)>& progress) {
   Stopwatch frame_clock;
-  const int w = settings_.width, h = settings_.height;
   // The film holds the window's pixels alone (the whole image without a crop), so a tile
   // of a large image needs the memory of the tile: pixel (x, y) is film pixel
   // (y - win.y0) * fw + (x - win.x0).
-  const PixelWindow win = settings_.crop.whole() ? PixelWindow{0, 0, w, h} : settings_.crop;
-  film_window_ = win;
+  const PixelWindow& win = film_window_;
   const int fw = win.width(), fh = win.height();
   const size_t pixels = size_t(fw) * fh;
   frame.rays = RayCounts{};

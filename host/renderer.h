@@ -221,7 +221,7 @@ class Renderer {
   std::vector<size_t> chunk_offsets_;  // where each chunk's output starts (concatenateChunks)
   // The pixels the film holds (the crop window, or the whole image) and, per rendered
   // pixel, its film index.
-  PixelWindow film_window_;
+  const PixelWindow film_window_;
   std::vector<int> window_pixels_;
   // The band window_pixels_ holds (renderInBands keeps it from frame to frame), and the
   // image width it was made for; width 0 when it holds something else.
