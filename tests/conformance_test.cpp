@@ -638,6 +638,38 @@ TEST_F(Conformance, RaysParallelToEachAxis) {
   expectAllAgree(tris, b, rays, standardGrids(b, tris.size()), "axis");
 }
 
+// A square of two triangles at z = 0 around `shift` (2 across), and a small triangle
+// below it that makes the box deep.
+std::vector<GrTriangle> squareOverADeepBox(const glm::vec3& shift) {
+  const glm::vec3& s = shift;
+  return {tri(s + glm::vec3(-1, -1, 0), s + glm::vec3(1, -1, 0), s + glm::vec3(1, 1, 0), 0),
+          tri(s + glm::vec3(-1, -1, 0), s + glm::vec3(1, 1, 0), s + glm::vec3(-1, 1, 0), 1),
+          tri(s + glm::vec3(-1, -1, -1), s + glm::vec3(-0.9f, -1, -1), s + glm::vec3(-1, -0.9f, -1), 2)};
+}
+
+// The centre pixels (80 x 80) of a (4/3 height) x height view of `target` from `distance`
+// away along an oblique direction (so every ray direction component rounds), and their
+// centre rays.
+struct CentreOfView {
+  Camera camera;
+  int width, height;
+  std::vector<GrRay> rays;
+  PinholeView view;
+};
+CentreOfView centreOfView(const glm::vec3& target, float distance, float fov_degrees, int height) {
+  CentreOfView c;
+  c.camera = lookAtCamera(target + glm::normalize(glm::vec3(0.6f, 0.35f, 0.7f)) * distance, target,
+                          glm::radians(fov_degrees));
+  c.height = height;
+  c.width = height * 4 / 3;
+  const PixelWindow window{c.width / 2 - 40, height / 2 - 40, c.width / 2 + 40, height / 2 + 40};
+  for (int j = window.y0; j < window.y1; ++j)
+    for (int i = window.x0; i < window.x1; ++i)
+      c.rays.push_back(cameraRay(c.camera, c.width, height, i, j, 0.5f, 0.5f));
+  c.view = PinholeView::of(c.camera, c.width, height, window);
+  return c;
+}
+
 // The camera path where a pixel is finer than its float ray's rounding: fields of view of
 // 0.01-0.1 degrees on a plane split by voxel boundaries, 1e3-1e4 from the world origin,
 // aimed at the corner where four voxels meet. A float projection of the voxels' outlines
@@ -648,27 +680,14 @@ TEST_F(Conformance, NarrowViewsOfABoxFarFromTheOriginMatchBrute) {
     int height;
   };
   for (const View& v : {View{1e4f, 0.01f, 480}, View{1e3f, 0.01f, 4000}, View{1e4f, 0.1f, 4000}}) {
-    const glm::vec3 s(v.shift, 0.5f * v.shift, 0.0f);
-    // A square of two triangles, and a small one below it that makes the box deep.
-    std::vector<GrTriangle> tris = {
-        tri(s + glm::vec3(-1, -1, 0), s + glm::vec3(1, -1, 0), s + glm::vec3(1, 1, 0), 0),
-        tri(s + glm::vec3(-1, -1, 0), s + glm::vec3(1, 1, 0), s + glm::vec3(-1, 1, 0), 1),
-        tri(s + glm::vec3(-1, -1, -1), s + glm::vec3(-0.9f, -1, -1), s + glm::vec3(-1, -0.9f, -1), 2)};
+    const std::vector<GrTriangle> tris = squareOverADeepBox(glm::vec3(v.shift, 0.5f * v.shift, 0.0f));
     const Bounds b = boundsOf(tris);
     const UniformGrid grid = buildUniformGrid(tris, b, dims(2, 2, 1));
     glm::vec3 lo, hi;
     grid.voxelBoxOfPe(0, lo, hi);
-    const glm::vec3 corner(hi.x, hi.y, 0.0f);
-    const Camera camera = lookAtCamera(corner + glm::normalize(glm::vec3(0.6f, 0.35f, 0.7f)) * 100.0f,
-                                       corner, glm::radians(v.fov_degrees));
-    const int h = v.height, w = h * 4 / 3;
-    const PixelWindow window{w / 2 - 40, h / 2 - 40, w / 2 + 40, h / 2 + 40};
-    std::vector<GrRay> rays;
-    for (int j = window.y0; j < window.y1; ++j)
-      for (int i = window.x0; i < window.x1; ++i) rays.push_back(cameraRay(camera, w, h, i, j, 0.5f, 0.5f));
-    const PinholeView view = PinholeView::of(camera, w, h, window);
-    expectAllAgree(tris, b, rays, {dims(2, 2, 1)},
-                   "shift " + std::to_string(v.shift) + " fov " + std::to_string(v.fov_degrees), &view);
+    const CentreOfView c = centreOfView(glm::vec3(hi.x, hi.y, 0.0f), 100.0f, v.fov_degrees, v.height);
+    expectAllAgree(tris, b, c.rays, {dims(2, 2, 1)},
+                   "shift " + std::to_string(v.shift) + " fov " + std::to_string(v.fov_degrees), &c.view);
   }
 }
 
@@ -677,23 +696,13 @@ TEST_F(Conformance, NarrowViewsOfABoxFarFromTheOriginMatchBrute) {
 // and camera paths lost 1-3 of these 6,400 pixels a view. With the eye in the margin's
 // scale (GridSettings::ray_origins) they equal brute force.
 TEST_F(Conformance, ACameraFarFromASmallSceneMatchesBrute) {
-  std::vector<GrTriangle> tris = {tri({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, 0),
-                                  tri({-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, 1),
-                                  tri({-1, -1, -1}, {-0.9f, -1, -1}, {-1, -0.9f, -1}, 2)};
+  const std::vector<GrTriangle> tris = squareOverADeepBox(glm::vec3(0.0f));
   const Bounds b = boundsOf(tris);
-  const glm::vec3 corner = b.center();
   for (float fov_degrees : {0.01f, 0.1f, 1.0f}) {
-    const Camera camera = lookAtCamera(corner + glm::normalize(glm::vec3(0.6f, 0.35f, 0.7f)) * 1e5f,
-                                       corner, glm::radians(fov_degrees));
-    const int h = 4000, w = h * 4 / 3;
-    const PixelWindow window{w / 2 - 40, h / 2 - 40, w / 2 + 40, h / 2 + 40};
-    std::vector<GrRay> rays;
-    for (int j = window.y0; j < window.y1; ++j)
-      for (int i = window.x0; i < window.x1; ++i) rays.push_back(cameraRay(camera, w, h, i, j, 0.5f, 0.5f));
+    const CentreOfView c = centreOfView(b.center(), 1e5f, fov_degrees, 4000);
     GridSettings settings = dims(2, 2, 1);
-    settings.ray_origins = primaryRayOrigins(camera, w, h);
-    const PinholeView view = PinholeView::of(camera, w, h, window);
-    expectAllAgree(tris, b, rays, {settings}, "fov " + std::to_string(fov_degrees), &view);
+    settings.ray_origins = primaryRayOrigins(c.camera, c.width, c.height);
+    expectAllAgree(tris, b, c.rays, {settings}, "fov " + std::to_string(fov_degrees), &c.view);
   }
 }
 
