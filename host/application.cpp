@@ -349,6 +349,7 @@ int runApplication(const Options& o) {
   stats["mrays_per_s"] = median_frame > 0 ? total_rays / (median_frame * 1e3) : 0.0;
   const IntersectCounters& c = t.first_frame_counters;
   stats["tests_per_ray"] = c.rays ? double(c.tests) / double(c.rays) : 0.0;
+  stats["tests_run_per_ray"] = c.rays ? double(c.tests_run) / double(c.rays) : 0.0;
   if (uses_grid) {
     std::vector<int> refs(grid.peCount());
     for (int pe = 0; pe < grid.peCount(); ++pe) refs[pe] = grid.triangleCountOfPe(pe);

@@ -42,6 +42,7 @@ void BruteIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   }
   counters_.rays += n;
   counters_.tests += uint64_t(n) * triangle_count_;
+  counters_.tests_run += uint64_t(n) * triangle_count_;
   counters_.kernel_ms += clock.ms();
   if (diagnostics) {
     diagnostics->tests.assign(n, triangle_count_);

@@ -48,7 +48,10 @@ void DdaIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
     });
   }
   counters_.rays += n;
-  for (int t : tests_host_) counters_.tests += t;
+  uint64_t tests = 0;
+  for (int t : tests_host_) tests += uint64_t(t);
+  counters_.tests += tests;
+  counters_.tests_run += tests;
   counters_.kernel_ms += clock.ms();
   if (diagnostics) {
     diagnostics->tests = tests_host_;

@@ -143,13 +143,15 @@ void GridRtIntersector::enqueuePlanesUnmap() {
 }
 
 void GridRtIntersector::finishBatch(const std::vector<int>& pairs_per_pe, size_t rays,
-                                    uint64_t tests, size_t pairs, uint64_t skipped) {
+                                    uint64_t tests, uint64_t tests_run, size_t pairs,
+                                    uint64_t skipped) {
   for (int pe = 0; pe < grid_.peCount(); ++pe) {
     rays_per_pe_[pe] += pairs_per_pe[pe];
     tests_per_pe_[pe] += uint64_t(pairs_per_pe[pe]) * grid_.triangleCountOfPe(pe);
   }
   counters_.rays += rays;
   counters_.tests += tests;
+  counters_.tests_run += tests_run;
   counters_.list_entries += pairs;
   counters_.skipped_pairs += skipped;
 }
@@ -190,8 +192,8 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   }
   const PacketResults results(results_map_, bins_.packets * kPeLanes, GR_LIST_RESULT_PLANES);
   const std::vector<GrPeTask>& tasks = bins_.tasks;
-  uint64_t tests = 0, skipped = 0, longest = 0;
-#pragma omp parallel reduction(+ : tests, skipped) reduction(max : longest)
+  uint64_t tests = 0, tests_run = 0, skipped = 0, longest = 0;
+#pragma omp parallel reduction(+ : tests, tests_run, skipped) reduction(max : longest)
   {
     const int me = omp_get_thread_num(), count = omp_get_num_threads();
     const long long lo = (long long)(n * me / count), hi = (long long)(n * (me + 1) / count);
@@ -215,6 +217,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
         const GrPacketMasks& m = results.masks[p];
         if (int(k % size_t(count)) == me) {
           tests += uint64_t(popcount(m.pierced & ~m.skipped)) * cost;
+          tests_run += uint64_t(m.tests);
           skipped += popcount(m.skipped);
         }
         for (int bits = m.hit | (diagnostics ? m.skipped : 0); bits; bits &= bits - 1) {
@@ -233,7 +236,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
     }
   }
   max_list_length_ = std::max(max_list_length_, longest);
-  finishBatch(bins_.pairs_per_pe, n, tests, lists_.entries.size(), skipped);
+  finishBatch(bins_.pairs_per_pe, n, tests, tests_run, lists_.entries.size(), skipped);
   counters_.reduce_ms += clock.ms();
 }
 
@@ -476,10 +479,10 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   }
   const int threads = omp_get_max_threads();
   thread_pe_pairs_.resize(threads);
-  uint64_t tests = 0, skipped = 0, pairs = 0;
+  uint64_t tests = 0, tests_run = 0, skipped = 0, pairs = 0;
   const auto& tasks = bundles.tasks;
   std::vector<int>* winners = diagnostics ? &diagnostics->winning_pe : nullptr;
-#pragma omp parallel num_threads(threads) reduction(+ : tests, skipped, pairs)
+#pragma omp parallel num_threads(threads) reduction(+ : tests, tests_run, skipped, pairs)
   {
     const int me = omp_get_thread_num(), count = omp_get_num_threads();
     std::vector<int>& pe_pairs = thread_pe_pairs_[me];
@@ -506,6 +509,8 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
         if (base < first) in_range &= 0xFFFF << int(first - base);
         if (base + kBundleLanes > last) in_range &= 0xFFFF >> int(base + kBundleLanes - last);
         const GrPacketMasks& m = results.masks[task.out_first / kBundleLanes + p];
+        // A packet's tests count in the thread whose range holds its first lane.
+        if (base >= lo) tests_run += uint64_t(m.tests);
         const int pierced = m.pierced & in_range, tested = pierced & ~m.skipped;
         if (!pierced) continue;
         pairs += popcount(pierced);
@@ -539,7 +544,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   std::vector<int>& pe_pairs = thread_pe_pairs_[0];
   for (size_t t = 1; t < thread_pe_pairs_.size(); ++t)
     for (int pe = 0; pe < grid_.peCount(); ++pe) pe_pairs[pe] += thread_pe_pairs_[t][pe];
-  finishBatch(pe_pairs, n, tests, pairs, skipped);
+  finishBatch(pe_pairs, n, tests, tests_run, pairs, skipped);
   counters_.reduce_ms += clock.ms();
 }
 

@@ -122,7 +122,7 @@ class GridRtIntersector : public Intersector {
   // The end of a batch, for both paths: adds the batch to the PE load and the counters
   // (phase 1's results stay mapped until the next batch's device commands).
   void finishBatch(const std::vector<int>& pairs_per_pe, size_t rays, uint64_t tests,
-                   size_t pairs, uint64_t skipped);
+                   uint64_t tests_run, size_t pairs, uint64_t skipped);
   // The bundle path: rays in bundle order, one work-group per task, then phase 2 over
   // the packets' masks (the first PE of a ray's list with a hit holds its smallest t).
   // cull_frame (may be null): packet culling (packet_culling.h) on that frame, used when

@@ -27,7 +27,11 @@ struct KernelOptions {
 // Work and time counted over all batches since the last reset.
 struct IntersectCounters {
   uint64_t rays = 0;
-  uint64_t tests = 0;         // ray-triangle tests executed
+  // Ray-triangle tests the rays' voxels hold: for gridrt each (ray, PE) pair tested (not
+  // skipped by the interrupt) times the PE's triangles, the paper's count; for the others
+  // the tests they ran.
+  uint64_t tests = 0;
+  uint64_t tests_run = 0;     // ray-triangle tests run (gridrt: those left after culling)
   uint64_t list_entries = 0;  // (ray, PE) pairs (gridrt)
   uint64_t skipped_pairs = 0; // pairs skipped by the emulated interrupt
   double lists_ms = 0;        // traversal lists and binning on the host

@@ -60,6 +60,7 @@ void ReferenceIntersector::intersect(const std::vector<GrRay>& rays, HitMode mod
   }
   counters_.rays += rays.size();
   counters_.tests += uint64_t(rays.size()) * tris;
+  counters_.tests_run += uint64_t(rays.size()) * tris;
   counters_.kernel_ms += clock.ms();
   if (diagnostics) {
     diagnostics->tests.assign(rays.size(), int(tris));

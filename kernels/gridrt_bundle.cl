@@ -67,7 +67,7 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
   m.pierced = 0;
   m.hit = 0;
   m.skipped = 0;
-  m.pad = 0;
+  m.tests = 0;
   if (any(active)) {
     /* The active lanes' box on the culling frame's tangent plane (host/packet_culling.h);
      * the host enables culling only when every ray has d.f > 0. */
@@ -88,7 +88,7 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
     int16 best_prim;
     gr_pe_closest16(r, pe_tris, begin, end, tmin, tmax, t_enter, t_exit, active, any_hit,
                     &best_t, &best_u, &best_v, &best_prim, cull_planes, cull_stride,
-                    packet_box, cull.enabled != 0.0f, &seg, seg_planes, seg_stride);
+                    packet_box, cull.enabled != 0.0f, &seg, seg_planes, seg_stride, &m.tests);
     m.hit = gr_store_packet_hits(best_t, best_prim, best_u, best_v, results, (size_t)lanes, out,
                                  interrupt, first_hit_key, (int16)first + GR_LANE_INDEX16,
                                  t_enter);

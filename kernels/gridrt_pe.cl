@@ -67,7 +67,7 @@ void gridrt_pe(__global const GrPeTask* tasks, __global const float* pairs,
   m.pierced = gr_lane_bits16(pierced);
   m.hit = 0;
   m.skipped = gr_lane_bits16(skipped);
-  m.pad = 0;
+  m.tests = 0;
   if (any(active)) {
     /* The list path's rays have their own origins: segment culling. */
     const GrSegmentPacket seg =
@@ -77,7 +77,7 @@ void gridrt_pe(__global const GrPeTask* tasks, __global const float* pairs,
     gr_pe_closest16(&r16, pe_tris, pe_tri_begin[task.pe], pe_tri_begin[task.pe + 1], tmin,
                     tmax, t_enter, t_exit, active, any_hit, &best_t, &best_u, &best_v,
                     &best_prim, (__global const float*)0, 0, (float4)0.0f, 0, &seg,
-                    seg_planes, seg_stride);
+                    seg_planes, seg_stride, &m.tests);
     m.hit = gr_store_packet_hits(best_t, best_prim, best_u, best_v, results, all_lanes, out,
                                  interrupt, first_hit_key, ray16, t_enter);
   }

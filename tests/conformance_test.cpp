@@ -17,6 +17,7 @@
 #include "gltf_loader.h"
 #include "gridrt_intersector.h"
 #include "prepared_triangles.h"
+#include "segment_culling.h"
 #include "test_support.h"
 #include "uniform_grid.h"
 
@@ -604,6 +605,72 @@ TEST_F(Conformance, LightBundlesWithTheLightOnAGridVertex) {
     rays.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, glm::length(light - o)});
   }
   EXPECT_EQ(lightBundleMismatches(*runtime_, tris, rays, light, {4, 4, 4}, 50), 0u);
+}
+
+// The kernels count the ray-triangle tests they run (IntersectCounters::tests_run). With
+// nothing to cull (PEs of one triangle, below the segment culling's minimum, on the list
+// path and the light bundles; no culling frame) that is every tested pair's triangles,
+// the paper's count (IntersectCounters::tests); where packet and segment culling work
+// (camera rays on bunny_res4, PEs of up to 52 triangles, through either path) it is far
+// less, but never less than one test a hit.
+TEST_F(Conformance, TheKernelsCountTheTestsTheyRunAfterCulling) {
+  std::vector<GrTriangle> lattice;
+  const int n = 8;
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const glm::vec3 c(x + 0.5f, y + 0.5f, z + 0.5f);  // one small triangle a cell
+        lattice.push_back(tri(c + glm::vec3(-0.3f, -0.3f, 0.1f), c + glm::vec3(0.3f, -0.2f, 0.0f),
+                              c + glm::vec3(0.0f, 0.3f, -0.1f), int(lattice.size())));
+      }
+  Bounds box;
+  box.grow(glm::vec3(0.0f));
+  box.grow(glm::vec3(float(n)));
+  UniformGrid grid = buildUniformGrid(lattice, box, dims(n, n, n));
+  for (int pe = 0; pe < grid.peCount(); ++pe)
+    ASSERT_LT(grid.triangleCountOfPe(pe), kSegmentCullMinTriangles);
+  auto hitsOf = [](const std::vector<GrHit>& hits) {
+    uint64_t count = 0;
+    for (const GrHit& hit : hits) count += hit.prim >= 0;
+    return count;
+  };
+  std::vector<GrHit> hits;
+  GridRtIntersector lists(*runtime_, grid, PeInterrupt::Off);
+  lists.intersect(randomRays(box, 20000, 3), HitMode::Closest, hits, nullptr);
+  EXPECT_GT(hitsOf(hits), 1000u);
+  EXPECT_EQ(lists.counters().tests_run, lists.counters().tests) << "list path";
+  const glm::vec3 light(0.5f * n, 1.5f * n, 0.5f * n);
+  std::vector<GrRay> shadow;
+  for (const GrRay& r : randomRays(box, 20000, 5)) {
+    const glm::vec3 o(r.ox, r.oy, r.oz), d = glm::normalize(light - o);
+    shadow.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, glm::length(light - o)});
+  }
+  GridRtIntersector bundles(*runtime_, grid, PeInterrupt::Off);
+  bundles.forceLightBundles();
+  bundles.intersectTowardsPoint(light, shadow, HitMode::Closest, hits);
+  EXPECT_GT(hitsOf(hits), 1000u);
+  EXPECT_EQ(bundles.counters().tests_run, bundles.counters().tests) << "light bundles";
+
+  Scene scene = loadGltfFile(test::sharedScene("bunny_res4.glb"));
+  auto tris = prepareTriangles(scene);
+  const Bounds b = sceneBounds(scene);
+  UniformGrid bunny_grid = buildUniformGrid(tris, b, GridSettings{});
+  PinholeView view = PinholeView::of(scene.camera, 320, 240, PixelWindow{});
+  const std::vector<GrRay> camera = cameraRays(scene, 320, 240);
+  GridRtIntersector culling(*runtime_, bunny_grid, PeInterrupt::Off);
+  for (const bool camera_path : {true, false}) {
+    const IntersectCounters before = culling.counters();
+    if (camera_path)
+      culling.intersectPrimary(view, camera, hits, nullptr);
+    else
+      culling.intersect(camera, HitMode::Closest, hits, nullptr);
+    const uint64_t tests = culling.counters().tests - before.tests;
+    const uint64_t run = culling.counters().tests_run - before.tests_run;
+    const char* path = camera_path ? "camera path" : "list path";
+    EXPECT_GT(hitsOf(hits), 1000u) << path;
+    EXPECT_GE(run, hitsOf(hits)) << path;
+    EXPECT_LT(run, tests / 2) << path;
+  }
 }
 
 TEST_F(Conformance, EmptyGridMissesEverything) {

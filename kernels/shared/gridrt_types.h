@@ -100,7 +100,7 @@ typedef struct {
   int pierced; /* the ray pierces the PE's voxel (the pair is in its traversal list) */
   int hit;     /* ... and has a hit inside it (t, prim, u, v written for this lane) */
   int skipped; /* ... and was skipped by the interrupt (an earlier PE had a hit) */
-  int pad;
+  int tests;   /* ray-triangle tests the packet ran after culling (triangles x active lanes) */
 } GrPacketMasks; /* 16 bytes */
 
 /* Packet culling for rays with a common origin (host/packet_culling.h): a direction d is

@@ -9,7 +9,9 @@
  * lane could hit is skipped.
  * With seg->enabled (rays with their own origins), triangle i is skipped when its outline
  * and the packet's in-voxel segments, both projected across the packet's mean direction,
- * are further apart than a bound on the test's rounding (host/segment_culling.h). */
+ * are further apart than a bound on the test's rounding (host/segment_culling.h).
+ * tests_out: the ray-triangle tests it ran, the triangles left after culling times the
+ * active lanes. */
 #ifndef GRIDRT_PE_CLOSEST16_H
 #define GRIDRT_PE_CLOSEST16_H
 #include "gridrt_types.h"
@@ -148,7 +150,9 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
     float16 tmax, float16 t_enter, float16 t_exit, int16 active, int any_hit,
     float16* best_t_out, float16* best_u_out, float16* best_v_out, int16* best_prim_out,
     __global const float* cull_planes, int cull_stride, float4 packet_box, int cull,
-    const GrSegmentPacket* seg, __global const float* seg_planes, int seg_stride) {
+    const GrSegmentPacket* seg, __global const float* seg_planes, int seg_stride,
+    int* tests_out) {
+  int tested = 0;
   float16 best_t = tmax, best_u = 0.0f, best_v = 0.0f;
   int16 best_prim = -1;
   /* The packet's summary costs about what a few triangles do: small PEs skip it. */
@@ -174,6 +178,7 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
       const int i = chunk + 31 - clz(todo & (0u - todo));
       todo &= todo - 1u;
       GrTriangle tri = tris[i];
+      ++tested;
       float16 t, u, v;
       int16 hit = gr_intersect16(r, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z,
                                  tri.e2x, tri.e2y, tri.e2z, &t, &u, &v);
@@ -194,6 +199,7 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
   *best_u_out = best_u;
   *best_v_out = best_v;
   *best_prim_out = best_prim;
+  *tests_out = tested * popcount(gr_lane_bits16(active));
 }
 
 /* Phase 1's output for one packet, for both PE kernels: where a lane hits, the packet's
