@@ -35,8 +35,8 @@ Light defaultLight(const Scene& scene, const Camera& camera) {
   return l;
 }
 
-GrRay makeRay(const glm::vec3& o, const glm::vec3& d, float tmax) {
-  return GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, tmax};
+GrRay makeRay(const glm::vec3& o, const glm::vec3& d, float tmax, float tmin = 0.0f) {
+  return GrRay{o.x, o.y, o.z, tmin, d.x, d.y, d.z, tmax};
 }
 
 // Diagnostics of one batch appended after those of the batches before it.
@@ -547,6 +547,7 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
     local[i] = weight * (mat.emissive + settings_.ambient * terms.diffuse);
     const glm::vec3 origin(lanes.ox[k], lanes.oy[k], lanes.oz[k]);
     glm::vec3 above = offsetRayOrigin(p, ng, origin, settings_.ray_offset);
+    const float shadow_start = rayOffsetDistance(p, origin, settings_.ray_offset);
     for (size_t l = 0; l < lights_.size(); ++l) {
       const LightLanes& light = out.light_lanes[l];
       if (!light.lit[k]) continue;
@@ -561,7 +562,7 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       glm::vec3 contribution = weight * direct;
       if (glm::length(contribution) == 0.0f) continue;
       const size_t s = nextSlot(out.shadow_rays, out.shadows, out.shadow_count);
-      out.shadow_rays[s] = makeRay(above, to_light, light.distance[k]);
+      out.shadow_rays[s] = makeRay(above, to_light, light.distance[k], shadow_start);
       out.shadows[s] = ShadowRay{path.pixel, int(l), contribution};
     }
     if (!spawn) continue;

@@ -65,12 +65,14 @@ inline float nextFloat(float x, bool up) {
   return x;
 }
 
-// p moved off the surface along `normal` (unit, on the side the new ray leaves towards);
-// ray_origin is the origin of the ray that found p. Inline: the shading loop calls it for
-// every secondary origin.
-inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n,
-                                 const glm::vec3& ray_origin, const RayOffset& offset) {
-  if (!offset.robust) return p + offset.epsilon * n;
+// How far a secondary ray's origin is moved off the surface of a hit point p found by a
+// ray from ray_origin: the bound on p's rounding error (robust), or the fixed epsilon.
+// Shadow rays also start their interval there (tmin): the same rounding may put p behind
+// a neighbouring surface (the ceiling beside a wall point at a concave corner), which the
+// ray would otherwise cross at once and call an occluder (tests/ray_offset_test.cpp).
+inline float rayOffsetDistance(const glm::vec3& p, const glm::vec3& ray_origin,
+                               const RayOffset& offset) {
+  if (!offset.robust) return offset.epsilon;
   // Waechter & Binder's idea (Ray Tracing Gems, ch. 6) of an offset that scales with the
   // coordinates, bounded here by the error of p = o + t*d, which grows with |o| as well
   // as |p| (their fixed 1/65536 near the origin is too small for a far camera and too
@@ -79,7 +81,16 @@ inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n,
   for (int a = 0; a < 3; ++a)
     magnitude = std::max({magnitude, std::fabs(p[a]), std::fabs(ray_origin[a])});
   constexpr float kUlpOfOne = 0x1p-23f;  // float spacing at 1
-  float distance = kHitPointErrorUlps * kUlpOfOne * magnitude;
+  return kHitPointErrorUlps * kUlpOfOne * magnitude;
+}
+
+// p moved off the surface along `normal` (unit, on the side the new ray leaves towards) by
+// rayOffsetDistance; ray_origin is the origin of the ray that found p. Inline: the
+// shading loop calls it for every secondary origin.
+inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n,
+                                 const glm::vec3& ray_origin, const RayOffset& offset) {
+  const float distance = rayOffsetDistance(p, ray_origin, offset);
+  if (!offset.robust) return p + distance * n;
   glm::vec3 out = p + distance * n;
   for (int a = 0; a < 3; ++a)
     if (n[a] != 0.0f) out[a] = nextFloat(out[a], n[a] > 0.0f);
