@@ -113,6 +113,13 @@ Material glass() {
   return m;
 }
 
+// How far each wall of the room reaches past the seams where it meets its neighbours
+// (metres), behind them and out of sight. Moeller-Trumbore is not watertight: a ray along
+// an edge shared by two walls could miss both, and 20 pixels of a 640x480 render saw
+// the background through the seams (DefaultScene.RaysAimedAtTheSeamsOfTheRoomHitAWall).
+// The open side z = 0 stays flush with the opening.
+constexpr float kSeamOverlap = 0.01f;
+
 // About 2.2k triangles per sphere: 7.5 degree facets, smooth enough behind smooth normals.
 constexpr int kSphereSegments = 48;
 constexpr int kSphereRings = 24;
@@ -130,15 +137,18 @@ Scene makeDefaultScene() {
   const glm::vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
   Scene scene;
 
-  // The room: normals point inwards; the side z = 0 is left open for the camera.
+  // The room: normals point inwards; the side z = 0 is left open for the camera. Each wall
+  // reaches kSeamOverlap past its seams (x beyond +-w, y beyond 0 and h, z beyond -d).
+  const float o = kSeamOverlap;
+  const float wide = w + o, tall = h / 2 + o, deep = (d + o) / 2, mid_z = -(d + o) / 2;
   int white = addMaterial(scene, diffuse("white", glm::vec3(0.75f), 0.9f));
-  addRect(scene, {0, 0, -d / 2}, Z * (d / 2), X * w, white);      // floor
-  addRect(scene, {0, h, -d / 2}, X * w, Z * (d / 2), white);      // ceiling
-  addRect(scene, {0, h / 2, -d}, X * w, Y * (h / 2), white);      // back wall
+  addRect(scene, {0, 0, mid_z}, Z * deep, X * wide, white);     // floor
+  addRect(scene, {0, h, mid_z}, X * wide, Z * deep, white);     // ceiling
+  addRect(scene, {0, h / 2, -d}, X * wide, Y * tall, white);    // back wall
   int red = addMaterial(scene, diffuse("red", {0.63f, 0.065f, 0.05f}, 0.9f));
-  addRect(scene, {-w, h / 2, -d / 2}, Y * (h / 2), Z * (d / 2), red);  // left wall
+  addRect(scene, {-w, h / 2, mid_z}, Y * tall, Z * deep, red);  // left wall
   int green = addMaterial(scene, diffuse("green", {0.14f, 0.45f, 0.091f}, 0.9f));
-  addRect(scene, {w, h / 2, -d / 2}, Z * (d / 2), Y * (h / 2), green);  // right wall
+  addRect(scene, {w, h / 2, mid_z}, Z * deep, Y * tall, green);  // right wall
 
   // The objects, all in the back half of the box where the camera sees the floor: a tall
   // diffuse block at the back right, a mirror sphere at the back left and a glass sphere in
