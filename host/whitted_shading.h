@@ -89,9 +89,8 @@ inline float rayOffsetDistance(const glm::vec3& p, const glm::vec3& ray_origin,
 // shading loop calls it for every secondary origin.
 inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n,
                                  const glm::vec3& ray_origin, const RayOffset& offset) {
-  const float distance = rayOffsetDistance(p, ray_origin, offset);
-  if (!offset.robust) return p + distance * n;
-  glm::vec3 out = p + distance * n;
+  glm::vec3 out = p + rayOffsetDistance(p, ray_origin, offset) * n;
+  if (!offset.robust) return out;
   for (int a = 0; a < 3; ++a)
     if (n[a] != 0.0f) out[a] = nextFloat(out[a], n[a] > 0.0f);
   return out;
