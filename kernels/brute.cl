@@ -24,6 +24,7 @@ __kernel void brute_intersect(__global const GrRay* rays, int ray_count,
   GrRays16 r16;
   r16.ox = vload16(0, a_ox); r16.oy = vload16(0, a_oy); r16.oz = vload16(0, a_oz);
   r16.dx = vload16(0, a_dx); r16.dy = vload16(0, a_dy); r16.dz = vload16(0, a_dz);
+  gr_prepare_rays16(&r16);
   float16 tmin = vload16(0, a_tmin);
   float16 best_t = vload16(0, a_tmax);
   float16 best_u = 0.0f, best_v = 0.0f;

@@ -135,6 +135,7 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
       r.ox = common.ox;
       r.oy = common.oy;
       r.oz = common.oz;
+      gr_prepare_rays16(&r);
       gr_bundle_packet(&r, (float16)common.tmin, (float16)common.tmax, in_task, first, out,
                        lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results, lanes,
                        first_hit_key, any_hit, interrupt, cull, cull_planes, cull_stride, 0,
@@ -143,6 +144,7 @@ void gridrt_bundle(__global const GrBundleTask* tasks, __global const float* pla
       r.ox = vload16(0, planes + GR_PLANE_OX * stride + first);
       r.oy = vload16(0, planes + GR_PLANE_OY * stride + first);
       r.oz = vload16(0, planes + GR_PLANE_OZ * stride + first);
+      gr_prepare_rays16(&r);
       gr_bundle_packet(&r, vload16(0, planes + GR_PLANE_TMIN * stride + first),
                        vload16(0, planes + GR_PLANE_TMAX * stride + first), in_task, first,
                        out, lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results,

@@ -43,6 +43,7 @@ void gridrt_pe(__global const GrPeTask* tasks, __global const float* pairs,
   r16.dx = gr_pair_plane16(packet, GR_PAIR_DX);
   r16.dy = gr_pair_plane16(packet, GR_PAIR_DY);
   r16.dz = gr_pair_plane16(packet, GR_PAIR_DZ);
+  gr_prepare_rays16(&r16);
   float16 tmin = gr_pair_plane16(packet, GR_PAIR_TMIN);
   float16 tmax = gr_pair_plane16(packet, GR_PAIR_TMAX);
   float16 t_enter = gr_pair_plane16(packet, GR_PAIR_T_ENTER);

@@ -7,6 +7,11 @@
 
 typedef struct {
   float16 ox, oy, oz, dx, dy, dz;
+#ifdef GR_WATERTIGHT
+  /* Each lane's shear (watertight16.h), made once per packet by gr_prepare_rays16. */
+  int16 kx, ky, kz;
+  float16 sx, sy, sz;
+#endif
 } GrRays16;
 
 inline int16 gr_intersect_mt16(const GrRays16* r, float v0x, float v0y, float v0z, float e1x,

@@ -4,8 +4,11 @@
 #ifdef GR_WATERTIGHT
 #include "watertight16.h"
 #define gr_intersect16 gr_intersect_watertight16
+#define gr_prepare_rays16 gr_wt_shear16
 #else
 #include "moller_trumbore16.h"
 #define gr_intersect16 gr_intersect_mt16
+/* Moeller-Trumbore needs nothing per packet. */
+inline void gr_prepare_rays16(GrRays16* r) { (void)r; }
 #endif
 #endif

@@ -13,10 +13,9 @@ inline float16 gr_wt_pick16(int16 k, float16 x, float16 y, float16 z) {
   return select(select(z, y, k == 1), x, k == 0);
 }
 
-inline int16 gr_intersect_watertight16_vertices(const GrRays16* r, float ax, float ay, float az,
-                                                float bx, float by, float bz, float cx,
-                                                float cy, float cz, float16* t_out,
-                                                float16* u_out, float16* v_out) {
+/* Each lane's dominant axis kz, the other two (swapped where d[kz] < 0, which keeps the
+ * winding) and the shear constants: per ray, so made once per packet, not per triangle. */
+inline void gr_wt_shear16(GrRays16* r) {
   float16 adx = fabs(r->dx), ady = fabs(r->dy), adz = fabs(r->dz);
   int16 kz = select(select((int16)2, (int16)1, ady > adz), select((int16)2, (int16)0, adx > adz),
                     adx > ady);
@@ -27,9 +26,20 @@ inline int16 gr_intersect_watertight16_vertices(const GrRays16* r, float ax, flo
   int16 kx2 = select(kx, ky, flip);
   ky = select(ky, kx, flip);
   kx = kx2;
-  float16 sx = gr_wt_pick16(kx, r->dx, r->dy, r->dz) / dkz;
-  float16 sy = gr_wt_pick16(ky, r->dx, r->dy, r->dz) / dkz;
-  float16 sz = 1.0f / dkz;
+  r->kx = kx;
+  r->ky = ky;
+  r->kz = kz;
+  r->sx = gr_wt_pick16(kx, r->dx, r->dy, r->dz) / dkz;
+  r->sy = gr_wt_pick16(ky, r->dx, r->dy, r->dz) / dkz;
+  r->sz = 1.0f / dkz;
+}
+
+inline int16 gr_intersect_watertight16_vertices(const GrRays16* r, float ax, float ay, float az,
+                                                float bx, float by, float bz, float cx,
+                                                float cy, float cz, float16* t_out,
+                                                float16* u_out, float16* v_out) {
+  const int16 kx = r->kx, ky = r->ky, kz = r->kz;
+  const float16 sx = r->sx, sy = r->sy, sz = r->sz;
   float16 rax = ax - r->ox, ray2 = ay - r->oy, raz = az - r->oz;
   float16 rbx = bx - r->ox, rby = by - r->oy, rbz = bz - r->oz;
   float16 rcx = cx - r->ox, rcy = cy - r->oy, rcz = cz - r->oz;
