@@ -546,8 +546,9 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
                          glm::vec3(hit.t / mat.attenuation_distance));
     local[i] = weight * (mat.emissive + settings_.ambient * terms.diffuse);
     const glm::vec3 origin(lanes.ox[k], lanes.oy[k], lanes.oz[k]);
-    glm::vec3 above = offsetRayOrigin(p, ng, origin, settings_.ray_offset);
-    const float shadow_start = rayOffsetDistance(p, origin, settings_.ray_offset);
+    // How far secondary origins leave the surface, and where shadow rays start.
+    const float offset_distance = rayOffsetDistance(p, origin, settings_.ray_offset);
+    glm::vec3 above = offsetRayOrigin(p, ng, offset_distance, settings_.ray_offset);
     for (size_t l = 0; l < lights_.size(); ++l) {
       const LightLanes& light = out.light_lanes[l];
       if (!light.lit[k]) continue;
@@ -562,7 +563,7 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       glm::vec3 contribution = weight * direct;
       if (glm::length(contribution) == 0.0f) continue;
       const size_t s = nextSlot(out.shadow_rays, out.shadows, out.shadow_count);
-      out.shadow_rays[s] = makeRay(above, to_light, light.distance[k], shadow_start);
+      out.shadow_rays[s] = makeRay(above, to_light, light.distance[k], offset_distance);
       out.shadows[s] = ShadowRay{path.pixel, int(l), contribution};
     }
     if (!spawn) continue;
@@ -575,7 +576,7 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
       if (f < 1.0f && refractDirection(d, n, eta, t_dir) && glm::dot(t_dir, ng) < 0.0f) {
         if (worthTracing(t_weight)) {
           const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
-          out.rays[s] = makeRay(offsetRayOrigin(p, -ng, origin, settings_.ray_offset), t_dir, kInf);
+          out.rays[s] = makeRay(offsetRayOrigin(p, -ng, offset_distance, settings_.ray_offset), t_dir, kInf);
           out.paths[s] = PathRay{path.pixel, t_weight, RayKind::Refraction};
         }
       } else {

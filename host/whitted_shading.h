@@ -85,15 +85,22 @@ inline float rayOffsetDistance(const glm::vec3& p, const glm::vec3& ray_origin,
 }
 
 // p moved off the surface along `normal` (unit, on the side the new ray leaves towards) by
-// rayOffsetDistance; ray_origin is the origin of the ray that found p. Inline: the
-// shading loop calls it for every secondary origin.
-inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n,
-                                 const glm::vec3& ray_origin, const RayOffset& offset) {
-  glm::vec3 out = p + rayOffsetDistance(p, ray_origin, offset) * n;
+// `distance` (rayOffsetDistance), and with the robust offset one more ulp per axis.
+// Inline: the shading loop calls it for every secondary origin, with the distance it
+// computed once per hit.
+inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n, float distance,
+                                 const RayOffset& offset) {
+  glm::vec3 out = p + distance * n;
   if (!offset.robust) return out;
   for (int a = 0; a < 3; ++a)
     if (n[a] != 0.0f) out[a] = nextFloat(out[a], n[a] > 0.0f);
   return out;
+}
+
+// The same for a hit point p found by a ray from ray_origin.
+inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n,
+                                 const glm::vec3& ray_origin, const RayOffset& offset) {
+  return offsetRayOrigin(p, n, rayOffsetDistance(p, ray_origin, offset), offset);
 }
 
 }  // namespace gridrt
