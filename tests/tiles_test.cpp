@@ -47,6 +47,17 @@ struct Rect {
   }
 };
 
+// A window file's data window: the window's offset and size, in an image of full size.
+void expectDataWindow(const OIIO::ImageSpec& s, int x, int y, int width, int height,
+                      int full_width, int full_height) {
+  EXPECT_EQ(s.x, x);
+  EXPECT_EQ(s.y, y);
+  EXPECT_EQ(s.width, width);
+  EXPECT_EQ(s.height, height);
+  EXPECT_EQ(s.full_width, full_width);
+  EXPECT_EQ(s.full_height, full_height);
+}
+
 // Renders `tiles`, merges them, and compares with one full render, bit for bit.
 void expectTilesMergeToFullRender(const std::string& name, const std::vector<Rect>& tiles,
                                   const std::vector<std::string>& flags) {
@@ -88,13 +99,7 @@ TEST(Tiles, WindowFileCarriesItsOffsetInTheDataWindow) {
   render(tile, {"--crop", "10,5,30,25", "--crop-output", "window"});
   auto in = OIIO::ImageInput::open(tile);
   ASSERT_TRUE(in) << OIIO::geterror();
-  const OIIO::ImageSpec& s = in->spec();
-  EXPECT_EQ(s.x, 10);
-  EXPECT_EQ(s.y, 5);
-  EXPECT_EQ(s.width, 20);
-  EXPECT_EQ(s.height, 20);
-  EXPECT_EQ(s.full_width, 64);
-  EXPECT_EQ(s.full_height, 48);
+  expectDataWindow(in->spec(), 10, 5, 20, 20, 64, 48);
 }
 
 TEST(Tiles, FullOutputIsZeroOutsideTheWindowAndTheRenderInside) {
@@ -137,11 +142,7 @@ TEST(Tiles, ATileOfAnImageTooLargeForMemoryRenders) {
   auto in = OIIO::ImageInput::open(tile);
   ASSERT_TRUE(in) << OIIO::geterror();
   const OIIO::ImageSpec& s = in->spec();
-  EXPECT_EQ(s.x, 30000);
-  EXPECT_EQ(s.y, 30000);
-  EXPECT_EQ(s.width, 64);
-  EXPECT_EQ(s.height, 40);
-  EXPECT_EQ(s.full_width, 65536);
+  expectDataWindow(s, 30000, 30000, 64, 40, 65536, 65536);
   std::vector<float> pixels(size_t(s.width) * s.height * s.nchannels);
   ASSERT_TRUE(in->read_image(0, 0, 0, s.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
   size_t lit = 0;
