@@ -209,6 +209,19 @@ MEDIAN_KEYS = ("frame_ms", "fps", "lists_ms", "kernel_ms", "reduce_ms", "shade_m
                "mrays_per_s") + TRACE_KEYS
 
 
+def run_peer_whitted(args, frames, packet):
+    """embree_peer --whitted: gridrt's renderer with Embree tracing, its figures under the
+    names gridrt's statistics use (trace_primary_ms, ...)."""
+    s = run_peer(args + ["--whitted"], frames, packet)
+    for kind in RAY_KINDS:
+        s[f"trace_{kind}_ms"] = s[f"{kind}_ms"]
+    return s
+
+
+# The phases of a Whitted frame any intersector has: tracing by ray kind, then shading.
+WHITTED_PHASES = tuple(f"trace_{kind}_ms" for kind in RAY_KINDS) + ("shade_ms",)
+
+
 def bench_whitted(frames):
     rows = []
     for label, scene in [("default scene", []), ("bunny_res4", [os.path.join(SHARED, "bunny_res4.glb")]),
@@ -219,6 +232,33 @@ def bench_whitted(frames):
         per_ray = ", ".join(f"{kind} {s[f'trace_{kind}_ns_per_ray']:.0f}" for kind in RAY_KINDS)
         print(f"whitted {label:14s}: {s['frame_ms']:8.2f} ms = {s['fps']:6.1f} fps, "
               f"{s['rays']['total']} rays; ns a ray traced: {per_ray}", flush=True)
+    return rows + whitted_peer_rows(frames)
+
+
+def whitted_peer_rows(frames):
+    """The default scene's frame in the same renderer with gridrt and with Embree tracing,
+    the variants in turns, TARGET_RUNS rounds: by phase, each the median of the rounds."""
+    if not os.path.exists(EMBREE_PEER):
+        print(f"no {EMBREE_PEER} (tools/setup.sh --bench builds it): Embree left out")
+        return []
+    args = ["--width", "640", "--height", "480", "--max-depth", "5"]
+    variants = [("gridrt", lambda: run_with_fps(args, frames))]
+    variants += [(name, lambda packet=packet: run_peer_whitted(args, frames, packet))
+                 for name, packet in EMBREE_VARIANTS]
+    results = {name: [] for name, _ in variants}
+    for _ in range(TARGET_RUNS):
+        for name, measure in variants:
+            results[name].append(measure())
+    rows = []
+    for name, _ in variants:
+        s = medians(results[name], ("frame_ms", "fps") + WHITTED_PHASES)
+        rows.append({"label": f"default scene [{name}]", "variant": name, "peer_comparison": 1,
+                     "frame_ms": s["frame_ms"], "fps": s["fps"],
+                     **{k: s[k] for k in WHITTED_PHASES}})
+        phases = ", ".join(f"{k.replace('trace_', '').replace('_ms', '')} {s[k]:.1f}"
+                           for k in WHITTED_PHASES)
+        print(f"whitted default scene [{name:21s}]: {s['frame_ms']:8.2f} ms = {s['fps']:6.1f} fps; "
+              f"ms: {phases}", flush=True)
     return rows
 
 
@@ -236,7 +276,10 @@ def chart_whitted(rows, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, (ax, kinds) = plt.subplots(1, 2, figsize=(12, 4.5))
+    peers = [r for r in rows if r.get("peer_comparison")]
+    rows = [r for r in rows if not r.get("peer_comparison")]
+    fig, axes = plt.subplots(1, 3 if peers else 2, figsize=(18 if peers else 12, 4.5))
+    ax, kinds = axes[0], axes[1]
     phases = ["lists_ms", "kernel_ms", "reduce_ms", "shade_ms"]
     bottom = [0.0] * len(rows)
     for p in phases:
@@ -252,6 +295,19 @@ def chart_whitted(rows, path):
                  [(kind, [r[f"trace_{kind}_ns_per_ray"] for r in rows]) for kind in RAY_KINDS])
     kinds.set(ylabel="ns per ray traced", title="Tracing cost by ray kind")
     kinds.legend(fontsize=8)
+    if peers:
+        # The default frame with each intersector in the same renderer, by phase.
+        ax = axes[2]
+        labels = [r["variant"] for r in peers]
+        bottom = [0.0] * len(peers)
+        for p in WHITTED_PHASES:
+            vals = [r[p] for r in peers]
+            ax.bar(labels, vals, bottom=bottom, label=p.replace("trace_", "trace ").replace("_ms", ""))
+            bottom = [b + v for b, v in zip(bottom, vals)]
+        ax.scatter(labels, [r["frame_ms"] for r in peers], color="k", zorder=5, label="frame")
+        ax.axhline(1000.0 / 30.0, color="red", ls="--", label="30 fps")
+        ax.set(ylabel="ms per frame", title="Default scene: the same renderer, gridrt or Embree tracing")
+        ax.legend(fontsize=8)
     fig.suptitle(machine_line(), fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
@@ -288,6 +344,8 @@ def peer_row(label, s, **extra):
     r = {"label": label, "accel": f"embree packet {s['packet']}", "triangles": s["triangles"],
          "rays": s["rays"], "frame_ms": s["frame_ms"], "mrays_per_s": s["mrays_per_s"],
          "build_ms": s["build_ms"]}
+    if "fps" in s:  # --whitted: gridrt's renderer with Embree tracing
+        r.update(fps=s["fps"], **{k: s[k] for k in WHITTED_PHASES})
     r.update(extra)
     return r
 
@@ -331,9 +389,13 @@ def bench_targets(frames, rounds=None):
     for label, key, args in TARGETS:
         variants = [(name, lambda extra=extra: run_with_fps(args + extra, frames))
                     for name, extra in GRIDRT_VARIANTS]
-        if peer and key != "fps":  # Embree traces rays; it has no Whitted renderer here
-            peer_args = [a for a in args if a != "--primary-only"]
-            variants += [(name, lambda packet=packet: run_peer(peer_args, frames, packet))
+        if peer:  # camera rays alone, or (fps) gridrt's Whitted renderer with Embree tracing
+            if key == "fps":
+                measure = lambda packet: run_peer_whitted(args, frames, packet)
+            else:
+                peer_args = [a for a in args if a != "--primary-only"]
+                measure = lambda packet: run_peer(peer_args, frames, packet)
+            variants += [(name, lambda packet=packet, measure=measure: measure(packet))
                          for name, packet in EMBREE_VARIANTS]
         results = {name: [] for name, _ in variants}
         for _ in range(rounds):
@@ -341,8 +403,8 @@ def bench_targets(frames, rounds=None):
                 results[name].append(measure())
         for name, _ in variants:
             embree = name.startswith("embree")
-            s = medians(results[name], ("frame_ms", "mrays_per_s", "build_ms") if embree
-                        else MEDIAN_KEYS)
+            s = medians(results[name], ("frame_ms", "mrays_per_s", "build_ms") +
+                        (("fps",) if key == "fps" else ()) if embree else MEDIAN_KEYS)
             value = s[key]
             per_round = [r[key] for r in results[name]]
             extra = {"value_min": min(per_round), "value_max": max(per_round),
@@ -356,7 +418,7 @@ def bench_targets(frames, rounds=None):
             rows.append(r)
             versus = (f", {extra['vs_embree_1ray']:.2f}x Embree 1-ray"
                       if "vs_embree_1ray" in extra else "")
-            what = "trace" if embree else "frame"
+            what = "trace" if embree and key != "fps" else "frame"
             print(f"target {label:52s} {name:22s}: {value:8.2f}  (rounds {min(per_round):.2f}-"
                   f"{max(per_round):.2f}, met in {extra['rounds_met']} of {rounds}; {what} "
                   f"{s['frame_ms']:.2f} ms{versus})", flush=True)
@@ -446,7 +508,8 @@ def chart_targets(rows, path):
     ax.set_ylabel("pixels (of 76,800)")
     ax.legend(fontsize=7)
     fig.suptitle(machine_line() + "; bars: the median round, whiskers: the lowest and highest"
-                 " round; Embree traces only (no ray generation or shading)", fontsize=8)
+                 " round; Embree: the camera rays' trace only (no ray generation or shading), but the whole"
+                 " Whitted frame in gridrt's renderer", fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
