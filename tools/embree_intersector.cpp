@@ -39,23 +39,39 @@ GrHit missOf(const GrRay& r) { return GrHit{r.tmax, -1, 0.0f, 0.0f}; }
 // An occluded ray (AnyHit): Embree does not say by which triangle (intersector header).
 GrHit occludedOf(const GrRay& r) { return GrHit{r.tmax, 0, 0.0f, 0.0f}; }
 
-void traceOne(RTCScene scene, const GrRay& r, HitMode mode, GrHit& hit) {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRayHit rh;
-  rh.ray.org_x = r.ox; rh.ray.org_y = r.oy; rh.ray.org_z = r.oz; rh.ray.tnear = r.tmin;
-  rh.ray.dir_x = r.dx; rh.ray.dir_y = r.dy; rh.ray.dir_z = r.dz; rh.ray.time = 0.0f;
-  rh.ray.tfar = r.tmax; rh.ray.mask = ~0u; rh.ray.id = 0; rh.ray.flags = 0;
+// One ray at a time, closest hits (rtcIntersect1) or occlusion (rtcOccluded1).
+void traceSingle(RTCScene scene, const std::vector<GrRay>& rays, HitMode mode, GrHit* hits) {
+  const long long n = (long long)rays.size();
   if (mode == HitMode::AnyHit) {
-    rtcOccluded1(scene, &context, &rh.ray);
-    hit = rh.ray.tfar < 0.0f ? occludedOf(r) : missOf(r);  // tfar = -inf: occluded
+#pragma omp parallel for schedule(dynamic, 1024)
+    for (long long i = 0; i < n; ++i) {
+      const GrRay& r = rays[i];
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      RTCRay ray;
+      ray.org_x = r.ox; ray.org_y = r.oy; ray.org_z = r.oz; ray.tnear = r.tmin;
+      ray.dir_x = r.dx; ray.dir_y = r.dy; ray.dir_z = r.dz; ray.time = 0.0f;
+      ray.tfar = r.tmax; ray.mask = ~0u; ray.id = 0; ray.flags = 0;
+      rtcOccluded1(scene, &context, &ray);
+      hits[i] = ray.tfar < 0.0f ? occludedOf(r) : missOf(r);  // tfar = -inf: occluded
+    }
     return;
   }
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene, &context, &rh);
-  hit = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID
-            ? missOf(r)
-            : GrHit{rh.ray.tfar, int(rh.hit.primID), rh.hit.u, rh.hit.v};
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (long long i = 0; i < n; ++i) {
+    const GrRay& r = rays[i];
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray.org_x = r.ox; rh.ray.org_y = r.oy; rh.ray.org_z = r.oz; rh.ray.tnear = r.tmin;
+    rh.ray.dir_x = r.dx; rh.ray.dir_y = r.dy; rh.ray.dir_z = r.dz; rh.ray.time = 0.0f;
+    rh.ray.tfar = r.tmax; rh.ray.mask = ~0u; rh.ray.id = 0; rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &context, &rh);
+    hits[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID
+                  ? missOf(r)
+                  : GrHit{rh.ray.tfar, int(rh.hit.primID), rh.hit.u, rh.hit.v};
+  }
 }
 
 // The packet types and calls of one width.
@@ -179,8 +195,7 @@ void EmbreeIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   counters_.rays += rays.size();
   if (packet_ == 8) return traceRuns<8>(scene_, rays, mode, hits.data());
   if (packet_ == 16) return traceRuns<16>(scene_, rays, mode, hits.data());
-#pragma omp parallel for schedule(dynamic, 1024)
-  for (long long i = 0; i < (long long)rays.size(); ++i) traceOne(scene_, rays[i], mode, hits[i]);
+  traceSingle(scene_, rays, mode, hits.data());
 }
 
 void EmbreeIntersector::intersectPrimary(const PinholeView& view, const std::vector<GrRay>& rays,
