@@ -249,17 +249,42 @@ def whitted_peer_rows(frames):
     for _ in range(TARGET_RUNS):
         for name, measure in variants:
             results[name].append(measure())
+    off = whitted_pixels_off_reference(args)
     rows = []
     for name, _ in variants:
         s = medians(results[name], ("frame_ms", "fps") + WHITTED_PHASES)
         rows.append({"label": f"default scene [{name}]", "variant": name, "peer_comparison": 1,
                      "frame_ms": s["frame_ms"], "fps": s["fps"],
-                     **{k: s[k] for k in WHITTED_PHASES}})
+                     **{k: s[k] for k in WHITTED_PHASES}, "pixels_off_reference": off[name]})
         phases = ", ".join(f"{k.replace('trace_', '').replace('_ms', '')} {s[k]:.1f}"
                            for k in WHITTED_PHASES)
         print(f"whitted default scene [{name:21s}]: {s['frame_ms']:8.2f} ms = {s['fps']:6.1f} fps; "
-              f"ms: {phases}", flush=True)
+              f"ms: {phases}; {off[name]} pixels off the reference by > {WHITTED_TOLERANCE}",
+              flush=True)
     return rows
+
+
+# A pixel of a Whitted image is off the reference when a channel differs by more than this
+# (linear radiance): well above float rounding, well below a wrong surface's colour.
+WHITTED_TOLERANCE = 0.1
+
+
+def whitted_pixels_off_reference(args):
+    """Per variant (gridrt, Embree 1-ray, Embree packets), the pixels of one Whitted image
+    that differ from the exact reference's (gridrt --accel reference) by more than
+    WHITTED_TOLERANCE in a channel."""
+    import numpy as np
+    import OpenImageIO as oiio
+    read = lambda p: np.asarray(oiio.ImageBuf(p).get_pixels(oiio.FLOAT))[..., :3]
+    with tempfile.TemporaryDirectory() as tmp:
+        image = lambda name: os.path.join(tmp, name.replace(" ", "_") + ".exr")
+        for name, extra in [("reference", ["--accel", "reference"]), ("gridrt", [])]:
+            subprocess.run([GRIDRT, *args, *extra, "-q", "-o", image(name)], check=True)
+        for name, packet in EMBREE_VARIANTS:
+            run_peer(args + ["--whitted"], 1, packet, ["-o", image(name)])
+        want = read(image("reference"))
+        return {name: int((np.abs(read(image(name)) - want).max(axis=-1) > WHITTED_TOLERANCE).sum())
+                for name in ["gridrt"] + [v for v, _ in EMBREE_VARIANTS]}
 
 
 def grouped_bars(ax, groups, series):
@@ -298,7 +323,8 @@ def chart_whitted(rows, path):
     if peers:
         # The default frame with each intersector in the same renderer, by phase.
         ax = axes[2]
-        labels = [r["variant"] for r in peers]
+        # The accuracy beside the speed: each variant's pixels off the exact reference.
+        labels = [f"{r['variant']}\n{r['pixels_off_reference']} px off the reference" for r in peers]
         bottom = [0.0] * len(peers)
         for p in WHITTED_PHASES:
             vals = [r[p] for r in peers]
@@ -307,7 +333,9 @@ def chart_whitted(rows, path):
         ax.scatter(labels, [r["frame_ms"] for r in peers], color="k", zorder=5, label="frame")
         ax.axhline(1000.0 / 30.0, color="red", ls="--", label="30 fps")
         ax.set(ylabel="ms per frame", title="Default scene: the same renderer, gridrt or Embree tracing")
-        ax.legend(fontsize=8)
+        ax.set_ylim(0, 1.45 * max(r["frame_ms"] for r in peers))
+        ax.tick_params(axis="x", labelsize=8)
+        ax.legend(fontsize=7, ncol=3, loc="upper right")
     fig.suptitle(machine_line(), fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
