@@ -39,6 +39,15 @@ GrHit missOf(const GrRay& r) { return GrHit{r.tmax, -1, 0.0f, 0.0f}; }
 // An occluded ray (AnyHit): Embree does not say by which triangle (intersector header).
 GrHit occludedOf(const GrRay& r) { return GrHit{r.tmax, 0, 0.0f, 0.0f}; }
 
+// One ray as Embree's single-ray query takes it.
+RTCRay embreeRay(const GrRay& r) {
+  RTCRay ray;
+  ray.org_x = r.ox; ray.org_y = r.oy; ray.org_z = r.oz; ray.tnear = r.tmin;
+  ray.dir_x = r.dx; ray.dir_y = r.dy; ray.dir_z = r.dz; ray.time = 0.0f;
+  ray.tfar = r.tmax; ray.mask = ~0u; ray.id = 0; ray.flags = 0;
+  return ray;
+}
+
 // One ray at a time, closest hits (rtcIntersect1) or occlusion (rtcOccluded1).
 void traceSingle(RTCScene scene, const std::vector<GrRay>& rays, HitMode mode, GrHit* hits) {
   const long long n = (long long)rays.size();
@@ -48,10 +57,7 @@ void traceSingle(RTCScene scene, const std::vector<GrRay>& rays, HitMode mode, G
       const GrRay& r = rays[i];
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
-      RTCRay ray;
-      ray.org_x = r.ox; ray.org_y = r.oy; ray.org_z = r.oz; ray.tnear = r.tmin;
-      ray.dir_x = r.dx; ray.dir_y = r.dy; ray.dir_z = r.dz; ray.time = 0.0f;
-      ray.tfar = r.tmax; ray.mask = ~0u; ray.id = 0; ray.flags = 0;
+      RTCRay ray = embreeRay(r);
       rtcOccluded1(scene, &context, &ray);
       hits[i] = ray.tfar < 0.0f ? occludedOf(r) : missOf(r);  // tfar = -inf: occluded
     }
@@ -63,9 +69,7 @@ void traceSingle(RTCScene scene, const std::vector<GrRay>& rays, HitMode mode, G
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh;
-    rh.ray.org_x = r.ox; rh.ray.org_y = r.oy; rh.ray.org_z = r.oz; rh.ray.tnear = r.tmin;
-    rh.ray.dir_x = r.dx; rh.ray.dir_y = r.dy; rh.ray.dir_z = r.dz; rh.ray.time = 0.0f;
-    rh.ray.tfar = r.tmax; rh.ray.mask = ~0u; rh.ray.id = 0; rh.ray.flags = 0;
+    rh.ray = embreeRay(r);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene, &context, &rh);
     hits[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID
