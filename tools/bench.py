@@ -7,8 +7,9 @@ their own columns (load_ms, compile_ms, build_ms).
 
     .venv/bin/python tools/bench.py paper     # the paper's experiment (bunny_res4, 320x240)
     .venv/bin/python tools/bench.py scaling   # triangles and image size
-    .venv/bin/python tools/bench.py whitted   # full Whitted frames with shadows (median of 5 processes)
-    .venv/bin/python tools/bench.py targets   # the four speed targets of issue 4
+    .venv/bin/python tools/bench.py whitted   # full Whitted frames with shadows (median of 5 processes),
+                                              # and the default frame with Embree tracing beside gridrt
+    .venv/bin/python tools/bench.py targets   # the four speed targets of issue 4, Embree beside
     .venv/bin/python tools/bench.py single    # one render per process: wall time, peak memory
     .venv/bin/python tools/bench.py all
 """
