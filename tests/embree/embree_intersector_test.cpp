@@ -23,6 +23,14 @@ namespace gridrt {
 namespace {
 
 constexpr int kWidth = 160, kHeight = 120;
+// Embree keeps another triangle than the lowest-index rule where two lie at equal or
+// near-equal distance (neighbouring faces, bunny_res4's duplicates): a different triangle
+// within this relative distance of the reference's hit is a tie, not a disagreement.
+constexpr float kTieRelative = 1e-5f;
+// A Whitted pixel differs when a channel is further than this (linear) from the
+// reference's; at most kDifferingPixelShare of the pixels may (seam near ties).
+constexpr float kPixelTolerance = 0.01f;
+constexpr double kDifferingPixelShare = 0.005;
 
 struct CameraRays {
   Camera camera;
@@ -69,9 +77,8 @@ TEST(EmbreeIntersector, CameraRaysFindTheReferenceTriangles) {
     std::vector<GrHit> tiles, runs;
     embree.intersectPrimary(view, c.rays, tiles, nullptr);
     embree.intersect(c.rays, HitMode::Closest, runs, nullptr);
-    // Silhouette edges and duplicate faces may fall either way: a few pixels in 19,200.
-    EXPECT_LE(disagreements(want, tiles, 1e-5f), 10u) << embree.name() << ", camera tiles";
-    EXPECT_LE(disagreements(want, runs, 1e-5f), 10u) << embree.name() << ", runs of rays";
+    EXPECT_EQ(disagreements(want, tiles, kTieRelative), 0u) << embree.name() << ", camera tiles";
+    EXPECT_EQ(disagreements(want, runs, kTieRelative), 0u) << embree.name() << ", runs of rays";
   }
 }
 
@@ -85,7 +92,7 @@ TEST(EmbreeIntersector, OcclusionRespectsTheRaysInterval) {
     EmbreeIntersector embree(scene, 2, packet);
     std::vector<GrHit> open, short_of_it, past_it;
     embree.intersect(c.rays, HitMode::AnyHit, open, nullptr);
-    EXPECT_LE(disagreements(want, open, INFINITY), 10u) << embree.name() << ", [0, inf)";
+    EXPECT_EQ(disagreements(want, open, INFINITY), 0u) << embree.name() << ", [0, inf)";
     // Each hitting ray cut to half its hit distance: nothing lies before its first hit.
     std::vector<GrRay> cut = c.rays, late = c.rays;
     size_t cut_rays = 0;
@@ -125,20 +132,18 @@ TEST(EmbreeIntersector, WhittedFrameMatchesTheReferenceRenderer) {
     Frame got;
     Renderer(scene, scene.camera, embree, settings).render(got);
     EXPECT_EQ(got.rays.primary, want.rays.primary) << embree.name();
-    EXPECT_NEAR(double(got.rays.shadow), double(want.rays.shadow), 0.01 * want.rays.shadow)
-        << embree.name();
-    EXPECT_NEAR(double(got.rays.reflection + got.rays.refraction),
-                double(want.rays.reflection + want.rays.refraction),
-                0.01 * (want.rays.reflection + want.rays.refraction))
-        << embree.name();
+    EXPECT_EQ(got.rays.shadow, want.rays.shadow) << embree.name();
+    EXPECT_EQ(got.rays.reflection, want.rays.reflection) << embree.name();
+    EXPECT_EQ(got.rays.refraction, want.rays.refraction) << embree.name();
     size_t differ = 0;
     for (size_t p = 0; p < want.film.rgb.size() / 3; ++p)
       for (int k = 0; k < 3; ++k)
-        if (std::fabs(got.film.rgb[3 * p + k] - want.film.rgb[3 * p + k]) > 0.01f) {
+        if (std::fabs(got.film.rgb[3 * p + k] - want.film.rgb[3 * p + k]) > kPixelTolerance) {
           ++differ;
           break;
         }
-    EXPECT_LE(differ, want.film.rgb.size() / 3 / 200) << embree.name() << ": over 0.5 % of pixels";
+    EXPECT_LE(double(differ), kDifferingPixelShare * double(want.film.rgb.size() / 3))
+        << embree.name() << ": too many pixels off the reference";
   }
 }
 
