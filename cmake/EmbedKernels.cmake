@@ -1,5 +1,5 @@
 # Turns each kernel source into a C++ string (raw literal) in one generated file, with a
-# lookup function gridrt::embeddedKernelSource(name). Headers under kernels/shared are
+# lookup function gridrt::embeddedKernelSource(name). Headers under kernels/common are
 # embedded too so that '#include' inside kernels resolves without the source tree.
 function(gridrt_embed_kernels output)
   set(sources ${ARGN})

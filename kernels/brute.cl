@@ -1,6 +1,6 @@
 /* Brute force: every ray against every triangle. The reference the grid intersectors
  * must match. One work-item tests 16 rays (float16 lanes, PoCL vectorises explicit
- * vector types but not loops across work-items: NOTES-POCL.md). */
+ * vector types but not loops across work-items: docs/development.md). */
 #pragma OPENCL FP_CONTRACT OFF
 #include "gridrt_types.h"
 #include "ray_triangle16.h"

@@ -9,7 +9,7 @@ their own columns (load_ms, compile_ms, build_ms).
     .venv/bin/python tools/bench.py scaling   # triangles and image size
     .venv/bin/python tools/bench.py whitted   # full Whitted frames with shadows (median of 5 processes),
                                               # and the default frame with Embree tracing beside gridrt
-    .venv/bin/python tools/bench.py targets   # the four speed targets of issue 4, Embree beside
+    .venv/bin/python tools/bench.py targets   # the four speed targets, Embree beside
     .venv/bin/python tools/bench.py single    # one render per process: wall time, peak memory
     .venv/bin/python tools/bench.py all
 """
@@ -24,7 +24,7 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SHARED = os.path.join(os.path.dirname(ROOT), "shared", "scenes")
+MODELS = os.path.join(ROOT, "scenes", "models")
 GRIDRT = os.path.join(ROOT, "build", "gridrt")
 # Embree 3 on the same rays, built where Embree is installed (tools/embree_peer.cpp).
 EMBREE_PEER = os.path.join(ROOT, "build", "tools", "embree_peer")
@@ -81,7 +81,7 @@ def write_csv(path, rows):
 
 
 def bench_paper(frames):
-    scene = os.path.join(SHARED, "bunny_res4.glb")
+    scene = os.path.join(MODELS, "bunny_res4.glb")
     base = [scene, "--width", "320", "--height", "240", "--primary-only"]
     rows = []
     for accel in ["gridrt", "dda"]:
@@ -139,7 +139,7 @@ def bench_scaling(frames):
     sizes = [(320, 240), (640, 480), (1280, 960), (1920, 1080)]
     for name in scenes:
         for w, h in sizes:
-            s = run([os.path.join(SHARED, name), "--width", str(w), "--height", str(h),
+            s = run([os.path.join(MODELS, name), "--width", str(w), "--height", str(h),
                      "--primary-only"], frames)
             rows.append(row(f"{name} {w}x{h}", s, scene=name,
                             ns_per_ray=s["frame_ms"] * 1e6 / s["rays"]["total"]))
@@ -225,8 +225,8 @@ WHITTED_PHASES = tuple(f"trace_{kind}_ms" for kind in RAY_KINDS) + ("shade_ms",)
 
 def bench_whitted(frames):
     rows = []
-    for label, scene in [("default scene", []), ("bunny_res4", [os.path.join(SHARED, "bunny_res4.glb")]),
-                         ("bunny", [os.path.join(SHARED, "bunny.glb")])]:
+    for label, scene in [("default scene", []), ("bunny_res4", [os.path.join(MODELS, "bunny_res4.glb")]),
+                         ("bunny", [os.path.join(MODELS, "bunny.glb")])]:
         s = run_median(scene + ["--width", "640", "--height", "480", "--max-depth", "5"], frames,
                        TARGET_RUNS)
         rows.append(row(label, s, fps=s["fps"], **{k: s[k] for k in TRACE_KEYS}))
@@ -342,16 +342,16 @@ def chart_whitted(rows, path):
     fig.savefig(path, dpi=110)
 
 
-# The speed targets (issue 4) and the runs that measure them: each figure is the median,
+# The speed targets and the runs that measure them: each figure is the median,
 # over RUNS separate processes, of each process's median frame.
 TARGET_RUNS = 5
 TARGETS = [
     ("bunny_res4 320x240 primary, ms/frame (<= 2)", "frame_ms",
-     [os.path.join(SHARED, "bunny_res4.glb"), "--width", "320", "--height", "240", "--primary-only"]),
+     [os.path.join(MODELS, "bunny_res4.glb"), "--width", "320", "--height", "240", "--primary-only"]),
     ("bunny 1280x960 primary, Mrays/s (>= 20)", "mrays_per_s",
-     [os.path.join(SHARED, "bunny.glb"), "--width", "1280", "--height", "960", "--primary-only"]),
+     [os.path.join(MODELS, "bunny.glb"), "--width", "1280", "--height", "960", "--primary-only"]),
     ("bunny grid build, ms (<= 40)", "build_ms",
-     [os.path.join(SHARED, "bunny.glb"), "--width", "64", "--height", "48", "--primary-only"]),
+     [os.path.join(MODELS, "bunny.glb"), "--width", "64", "--height", "48", "--primary-only"]),
     ("default scene 640x480 Whitted depth 5, fps (>= 30)", "fps",
      ["--width", "640", "--height", "480", "--max-depth", "5"]),
 ]
@@ -476,7 +476,7 @@ def accuracy_rows(peer):
     import numpy as np
     rows = []
     for scene in ACCURACY_SCENES:
-        args = [os.path.join(SHARED, scene), "--width", "320", "--height", "240"]
+        args = [os.path.join(MODELS, scene), "--width", "320", "--height", "240"]
 
         def gridrt(extra):
             return lambda pid, depth: subprocess.run(
@@ -546,7 +546,7 @@ def chart_targets(rows, path):
 # One render per process, as a user runs it: the whole process's wall time (start-up,
 # loading the kernels, the first frame, writing the PNG) and its peak memory.
 SINGLE_RUNS = 3
-SINGLE = [("default scene", []), ("bunny", [os.path.join(SHARED, "bunny.glb")])]
+SINGLE = [("default scene", []), ("bunny", [os.path.join(MODELS, "bunny.glb")])]
 SINGLE_SIZES = [(640, 480), (1920, 1080), (3840, 2160)]
 
 

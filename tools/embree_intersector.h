@@ -1,5 +1,5 @@
-// Embree 3 (Debian's libembree-dev) as a gridrt Intersector: the CPU peer the speed issue
-// measures GridRT against. Plugged into gridrt's own Renderer, it traces a whole Whitted
+// Embree 3 (Debian's libembree-dev) as a gridrt Intersector: the CPU peer GridRT is
+// measured against. Plugged into gridrt's own Renderer, it traces a whole Whitted
 // frame (camera, reflection, refraction and shadow rays) with the same shading around it,
 // so that a frame can be compared with gridrt's frame and not only a camera-ray trace.
 // Built only where CMake finds Embree (tools/setup.sh --bench); used by tools/embree_peer.

@@ -1,4 +1,4 @@
-// The CPU peer the speed issue measures GridRT against: Embree 3 (Debian's libembree-dev,
+// The CPU peer GridRT is measured against: Embree 3 (Debian's libembree-dev,
 // tools/embree_intersector.h) on the same scene, on the same machine, in the same run of
 // tools/bench.py. Built only where CMake finds Embree (tools/setup.sh --bench).
 //
@@ -13,7 +13,7 @@
 // flatters Embree against gridrt's frame, which has both. --primid writes each pixel's
 // triangle (the scene's global index, -1 on a miss) and --depth its hit distance (-1 on a
 // miss), the formats of gridrt --aov primid / depth.
-// --whitted: gridrt's own Whitted renderer (host/renderer.h, its default settings) with
+// --whitted: gridrt's own Whitted renderer (host/render/renderer.h, its default settings) with
 // Embree as its intersector, on the scene or without one on gridrt's built-in default
 // scene: the same frame as `gridrt` renders, ray generation, shading and shadow rays
 // included, only the tracing Embree's. -o writes the image.

@@ -1,5 +1,5 @@
 // make_scenes OUTDIR: writes the committed test scenes (scenes/README.md) as glTF:
-//   default.gltf          the built-in default scene (host/default_scene.cpp)
+//   default.gltf          the built-in default scene (host/scene/default_scene.cpp)
 //   quad_light.gltf       a grey quad under a point light: pixels follow Lambert exactly
 //   refraction_slab.gltf  a turned glass slab in front of a checkered wall
 //   mirror_test.gltf      a 45-degree mirror showing an emissive red wall to the camera

@@ -5,7 +5,7 @@
 // tags), so tiles can be given in any order. The tiles must agree on the full size and
 // the channel count and must not overlap; pixels no tile covers are zero (with a warning).
 // Values are copied as 32-bit floats, so merging is exact: the merged image equals a
-// single full render bit for bit (tests/tiles_test.cpp).
+// single full render bit for bit (tests/image/tiles_test.cpp).
 //
 // Exit codes: 0 success, 2 usage, 1 unreadable, inconsistent or overlapping tiles.
 #include <OpenImageIO/imagebuf.h>

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates the README's CLI reference from `build/gridrt --help`, so the two never
-# drift (tests/readme_test.cpp fails when they differ).
+# drift (tests/app/readme_test.cpp fails when they differ).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 help=$(build/gridrt --help)

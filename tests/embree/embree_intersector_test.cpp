@@ -62,7 +62,7 @@ size_t disagreements(const std::vector<GrHit>& want, const std::vector<GrHit>& g
 }
 
 TEST(EmbreeIntersector, CameraRaysFindTheReferenceTriangles) {
-  const Scene scene = loadGltfFile(test::sharedScene("bunny_res4.glb"));
+  const Scene scene = loadGltfFile(test::modelScene("bunny_res4.glb"));
   const CameraRays c = cameraRaysOf(scene);
   ReferenceIntersector reference(scene);
   std::vector<GrHit> want;
@@ -83,7 +83,7 @@ TEST(EmbreeIntersector, CameraRaysFindTheReferenceTriangles) {
 }
 
 TEST(EmbreeIntersector, OcclusionRespectsTheRaysInterval) {
-  const Scene scene = loadGltfFile(test::sharedScene("bunny_res4.glb"));
+  const Scene scene = loadGltfFile(test::modelScene("bunny_res4.glb"));
   CameraRays c = cameraRaysOf(scene);
   ReferenceIntersector reference(scene);
   std::vector<GrHit> want;

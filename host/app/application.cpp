@@ -1,0 +1,386 @@
+#include "application.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "brute_intersector.h"
+#include "camera_rays.h"
+#include "crop_window.h"
+#include "cl_runtime.h"
+#include "dda_intersector.h"
+#include "default_scene.h"
+#include "errors.h"
+#include "frame_statistics.h"
+#include "gltf_loader.h"
+#include "gridrt_intersector.h"
+#include "image_output.h"
+#include "memory_estimate.h"
+#include "prepared_triangles.h"
+#include "progress.h"
+#include "reference_intersector.h"
+#include "renderer.h"
+#include "stopwatch.h"
+#include "uniform_grid.h"
+#include "window_output.h"
+
+namespace gridrt {
+
+namespace {
+
+[[noreturn]] void refuseImage(const Options& o, double bytes, double limit_bytes, const char* where) {
+  const std::string window =
+      o.crop ? " (window " + std::to_string(o.crop->x0) + "," + std::to_string(o.crop->y0) + "," +
+                   std::to_string(o.crop->x1) + "," + std::to_string(o.crop->y1) +
+                   (o.crop_output == CropOutput::Full ? ", written full size)" : ")")
+             : "";
+  throw RenderError("image " + std::to_string(o.width) + "x" + std::to_string(o.height) + window +
+                    " at " + std::to_string(o.spp) + " spp needs about " +
+                    std::to_string((long long)(bytes / (1 << 20))) + " MiB, more than the " +
+                    std::to_string((long long)(limit_bytes / (1 << 20))) + " MiB of " + where);
+}
+
+MemoryEstimate estimateOf(const Options& o) {
+  return estimateMemory(o.width, o.height, o.spp, o.crop ? *o.crop : PixelWindow{},
+                        o.crop_output == CropOutput::Full);
+}
+
+// Checked before the scene is loaded or a device opened, so that an absurd size fails at
+// once (gridrt --width 65536 --height 65536) and nothing is allocated for it.
+void checkImageFitsHost(const Options& o) {
+  const double host = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  const double need = estimateOf(o).host_bytes;
+  if (need > host) refuseImage(o, need, host, "host memory");
+}
+
+void checkImageFitsDevice(const Options& o, const DeviceInfo& device) {
+  const double need = estimateOf(o).device_bytes;
+  if (need > double(device.global_mem_bytes))
+    refuseImage(o, need, double(device.global_mem_bytes), "device memory");
+}
+
+// Runs `step`, turning an OpenCL error into a RenderError that says what was being done
+// (main() would otherwise only know the failing OpenCL call), with a hint for the errors
+// that mean "too big for this device".
+template <class Step>
+auto during(const std::string& what, Step&& step) -> decltype(step()) {
+  try {
+    return step();
+  } catch (const cl::Error& e) {
+    std::string message = "OpenCL error while " + what + ": " + e.what() + " returned " +
+                          clErrorName(e.err());
+    if (e.err() == CL_OUT_OF_RESOURCES || e.err() == CL_OUT_OF_HOST_MEMORY ||
+        e.err() == CL_MEM_OBJECT_ALLOCATION_FAILURE || e.err() == CL_INVALID_BUFFER_SIZE)
+      message += " (the device ran out of memory or resources: try a smaller image, fewer "
+                 "--spp or a coarser --grid)";
+    throw RenderError(message);
+  }
+}
+
+// The built-in scene is not loaded through the glTF loader, so --camera is checked here.
+Scene loadScene(const Options& o) {
+  if (!o.scene.empty()) return loadGltfFile(o.scene, GltfLoadOptions{o.camera_name});
+  Scene scene = makeDefaultScene();
+  if (!o.camera_name.empty() && o.camera_name != scene.camera.name)
+    throw SceneError("the built-in default scene has no camera '" + o.camera_name +
+                     "' (its only camera is '" + scene.camera.name + "')");
+  return scene;
+}
+
+// --stats-json is written after the render: check its folder first, so that a typo does
+// not cost a whole render (and leave an image without its statistics).
+void validateStatsPath(const std::string& path) {
+  if (path.empty()) return;
+  std::filesystem::path p(path), dir = p.parent_path().empty() ? "." : p.parent_path();
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+    throw RenderError("cannot write '" + path + "': directory '" + dir.string() +
+                      "' does not exist");
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw RenderError("cannot write '" + path + "': directory '" + dir.string() +
+                      "' is not writable");
+  if (std::filesystem::is_directory(p, ec))
+    throw RenderError("cannot write '" + path + "': it is a directory");
+}
+
+Camera chooseCamera(const Options& o, const Scene& scene) {
+  Camera camera = scene.has_camera ? scene.camera : defaultCamera(sceneBounds(scene));
+  if (o.eye) {
+    float yfov = camera.orthographic ? 0.6981317f : camera.yfov;
+    camera = lookAtCamera(*o.eye, *o.target, yfov);
+  }
+  if (o.fov_degrees) {
+    camera.orthographic = false;
+    camera.yfov = *o.fov_degrees * 3.14159265f / 180.0f;
+  }
+  return camera;
+}
+
+std::vector<float> aovData(const PrimaryAovs& a, const std::string& name, int& channels) {
+  channels = name == "normal" ? 3 : 1;
+  if (name == "depth") return a.depth;
+  if (name == "primid") return a.primid;
+  if (name == "normal") return a.normal;
+  if (name == "tests") return a.tests;
+  if (name == "pe") return a.pe;
+  return a.list_length;
+}
+
+// Writes one image or AOV, honouring --crop: the renderer's film holds the window's pixels
+// (the whole image without --crop); with --crop-output full they are placed in a
+// full-size image, zero outside; with window, the window alone at its offset
+// (host/image/window_output.h).
+void writeCropped(const Options& o, const std::string& path, int channels,
+                  std::vector<float> data, OutputKind kind) {
+  if (o.crop && o.crop_output == CropOutput::Window) {
+    writeWindowImage(path, *o.crop, o.width, o.height, channels, data);
+    return;
+  }
+  if (o.crop) data = placeWindow(data, o.width, o.height, channels, *o.crop);
+  if (kind == OutputKind::Image)
+    writeImage(path, Film{o.width, o.height, std::move(data)});
+  else
+    writeAov(path, o.width, o.height, channels, data);
+}
+
+void writeOutputs(const Options& o, const Frame& frame) {
+  writeCropped(o, o.output, 3, frame.film.rgb, OutputKind::Image);
+  for (const auto& aov : o.aovs) {
+    int channels = 1;
+    std::vector<float> data = aovData(frame.aovs, aov.first, channels);
+    writeCropped(o, aov.second, channels, std::move(data), OutputKind::Aov);
+  }
+}
+
+RenderSettings renderSettings(const Options& o) {
+  RenderSettings settings;
+  settings.width = o.width;
+  settings.height = o.height;
+  settings.spp = o.spp;
+  settings.max_depth = o.max_depth;
+  settings.primary_only = o.primary_only;
+  settings.background = o.background;
+  settings.ambient = o.ambient;
+  settings.ray_offset = o.ray_offset;
+  settings.adaptive_aa = o.adaptive_aa;
+  settings.aa_samples = o.aa_samples;
+  settings.aa_threshold = o.aa_threshold;
+  settings.min_path_weight = o.min_path_weight;
+  if (o.crop) settings.crop = *o.crop;  // only the window's rays are traced
+  settings.want_aovs = !o.aovs.empty();  // filling them costs time per frame
+  for (const auto& aov : o.aovs)
+    settings.want_diagnostics |= aov.first == "tests" || aov.first == "pe" || aov.first == "listlen";
+  return settings;
+}
+
+// Per-frame timings of the timed frames, and the intersector counters of the first.
+struct FrameTimings {
+  std::vector<double> frame_ms, kernel_ms, shade_ms, lists_ms, reduce_ms, intersect_ms;
+  std::vector<double> primary_ms, secondary_ms, shadow_ms;  // intersect_ms by ray kind
+  IntersectCounters first_frame_counters;
+};
+
+// Renders 1 + --repeat frames into `frame`. The first frame warms up (buffers, caches);
+// with --repeat, medians come from the rest. A progress bar runs across all frames.
+FrameTimings renderFrames(const Options& o, Renderer& renderer, Intersector& intersector,
+                          Frame& frame) {
+  FrameTimings t;
+  ProgressBar bar(progressWanted(o.quiet));
+  const int frames = o.repeat + 1;
+  for (int f = 0; f < frames; ++f) {
+    IntersectCounters before = intersector.counters();
+    renderer.render(frame, [&](int done, int total) {
+      bar.update((f + double(done) / std::max(total, 1)) / frames);
+    });
+    const IntersectCounters& after = intersector.counters();
+    if (f == 0) {
+      t.first_frame_counters = after;
+      if (o.repeat > 0) continue;
+    }
+    t.frame_ms.push_back(frame.times.frame_ms);
+    t.shade_ms.push_back(frame.times.shade_ms);
+    t.intersect_ms.push_back(frame.times.intersectMs());
+    t.primary_ms.push_back(frame.times.primary_ms);
+    t.secondary_ms.push_back(frame.times.secondary_ms);
+    t.shadow_ms.push_back(frame.times.shadow_ms);
+    t.kernel_ms.push_back(after.kernel_ms - before.kernel_ms);
+    t.lists_ms.push_back(after.lists_ms - before.lists_ms);
+    t.reduce_ms.push_back(after.reduce_ms - before.reduce_ms);
+  }
+  bar.finish();
+  return t;
+}
+
+std::unique_ptr<Intersector> makeIntersector(const Options& o, ClRuntime& runtime,
+                                             const Scene& scene,
+                                             const std::vector<GrTriangle>& triangles,
+                                             const UniformGrid& grid,
+                                             GridRtIntersector*& gridrt) {
+  gridrt = nullptr;
+  const KernelOptions kernel{o.watertight};
+  if (o.accel == AccelKind::Brute)
+    return std::make_unique<BruteIntersector>(runtime, triangles, kernel);
+  if (o.accel == AccelKind::Reference) return std::make_unique<ReferenceIntersector>(scene);
+  if (o.accel == AccelKind::Dda) return std::make_unique<DdaIntersector>(runtime, grid, kernel);
+  auto g = std::make_unique<GridRtIntersector>(
+      runtime, grid, o.pe_interrupt ? PeInterrupt::AllRays : PeInterrupt::CameraRays, kernel);
+  gridrt = g.get();
+  return g;
+}
+
+void printSummary(const Options& o, const Frame& frame, double median_frame,
+                  const std::string& accel) {
+  uint64_t total_rays = frame.rays.total();
+  std::string window;
+  if (o.crop)
+    window = " window " + std::to_string(o.crop->x0) + "," + std::to_string(o.crop->y0) + "-" +
+             std::to_string(o.crop->x1) + "," + std::to_string(o.crop->y1) + ",";
+  char line[512];
+  std::snprintf(line, sizeof line, "gridrt: %dx%d,%s %llu rays (%llu primary, %llu shadow, %llu "
+                "secondary), %.1f ms/frame, %.2f Mrays/s, %s -> %s\n",
+                o.width, o.height, window.c_str(), (unsigned long long)total_rays,
+                (unsigned long long)frame.rays.primary, (unsigned long long)frame.rays.shadow,
+                (unsigned long long)(frame.rays.reflection + frame.rays.refraction),
+                median_frame, median_frame > 0 ? total_rays / (median_frame * 1e3) : 0.0,
+                accel.c_str(), o.output.c_str());
+  std::cerr << line;
+}
+
+}  // namespace
+
+int runApplication(const Options& o) {
+  if (o.list_devices) {
+    auto devices = listDevices();
+    if (devices.empty())
+      throw RenderError("no OpenCL platform found: install an OpenCL driver, e.g. 'apt-get "
+                        "install pocl-opencl-icd'");
+    std::cout << formatDeviceTable(devices);
+    return 0;
+  }
+  // Fail on bad output paths and absurd sizes before spending time on anything.
+  validateOutputPath(o.output);
+  for (const auto& aov : o.aovs) validateOutputPath(aov.second, OutputKind::Aov);
+  validateStatsPath(o.stats_json);
+  checkImageFitsHost(o);
+
+  Stopwatch clock;
+  Scene scene = loadScene(o);
+  double load_ms = clock.ms();
+  if (!o.quiet)
+    for (const auto& w : scene.warnings) std::cerr << "gridrt: warning: " << w << '\n';
+  Camera camera = chooseCamera(o, scene);
+
+  ClRuntime runtime(o.device);
+  if (!o.quiet)
+    std::cerr << "gridrt: device " << runtime.info().platform_index << ":"
+              << runtime.info().device_index << " " << runtime.info().name << '\n';
+  checkImageFitsDevice(o, runtime.info());
+
+  std::vector<GrTriangle> triangles = prepareTriangles(scene, KernelOptions{o.watertight});
+  clock.restart();
+  UniformGrid grid;
+  bool uses_grid = o.accel == AccelKind::GridRt || o.accel == AccelKind::Dda;
+  if (uses_grid) {
+    GridSettings settings = o.grid;
+    settings.ray_origins = primaryRayOrigins(camera, o.width, o.height);
+    grid = buildUniformGrid(triangles, sceneBounds(scene), settings);
+  }
+  double build_ms = clock.ms();
+
+  clock.restart();
+  GridRtIntersector* gridrt = nullptr;
+  std::unique_ptr<Intersector> intersector = during("building the kernels and uploading the scene", [&] {
+    return makeIntersector(o, runtime, scene, triangles, grid, gridrt);
+  });
+  double compile_ms = clock.ms();
+
+  Renderer renderer(scene, camera, *intersector, renderSettings(o));
+  Frame frame;
+  FrameTimings t = during("rendering", [&] { return renderFrames(o, renderer, *intersector, frame); });
+
+  writeOutputs(o, frame);
+
+  double median_frame = median(t.frame_ms);
+  uint64_t total_rays = frame.rays.total();
+  nlohmann::json stats;
+  stats["device"] = runtime.info().name;
+  stats["scene"] = o.scene.empty() ? "(default scene)" : o.scene;
+  stats["triangles"] = scene.triangleCount();
+  stats["width"] = o.width;
+  stats["height"] = o.height;
+  stats["spp"] = o.spp;
+  stats["max_depth"] = o.max_depth;
+  stats["accel"] = intersector->name();
+  stats["intersector"] = o.accel == AccelKind::Reference ? "double" : o.watertight ? "watertight" : "mt";
+  stats["aa"] = o.adaptive_aa ? "adaptive" : "uniform";
+  stats["refined_pixels"] = frame.refined_pixels;
+  stats["passes"] = frame.passes;
+  stats["frames_timed"] = t.frame_ms.size();
+  stats["rays"] = {{"primary", frame.rays.primary},       {"shadow", frame.rays.shadow},
+                   {"reflection", frame.rays.reflection}, {"refraction", frame.rays.refraction},
+                   {"total", total_rays}};
+  stats["load_ms"] = load_ms;
+  stats["build_ms"] = build_ms;
+  stats["compile_ms"] = compile_ms;
+  stats["programs"] = {{"loaded", runtime.programsLoaded()}, {"compiled", runtime.programsCompiled()}};
+  stats["lists_ms"] = median(t.lists_ms);
+  stats["kernel_ms"] = median(t.kernel_ms);
+  stats["reduce_ms"] = median(t.reduce_ms);
+  stats["intersect_ms"] = median(t.intersect_ms);
+  // The tracing time by ray kind, with what a ray of each kind cost (each a median).
+  auto perRay = [](double ms, uint64_t rays) { return rays ? ms * 1e6 / double(rays) : 0.0; };
+  const double primary_ms = median(t.primary_ms), secondary_ms = median(t.secondary_ms),
+               shadow_ms = median(t.shadow_ms);
+  stats["trace"] = {
+      {"primary_ms", primary_ms},
+      {"secondary_ms", secondary_ms},
+      {"shadow_ms", shadow_ms},
+      {"primary_ns_per_ray", perRay(primary_ms, frame.rays.primary)},
+      {"secondary_ns_per_ray", perRay(secondary_ms, frame.rays.reflection + frame.rays.refraction)},
+      {"shadow_ns_per_ray", perRay(shadow_ms, frame.rays.shadow)}};
+  stats["shade_ms"] = median(t.shade_ms);
+  stats["generate_ms"] = frame.times.generate_ms;  // primary rays of the last frame
+  stats["frame_ms"] = median_frame;
+  stats["mrays_per_s"] = median_frame > 0 ? total_rays / (median_frame * 1e3) : 0.0;
+  const IntersectCounters& c = t.first_frame_counters;
+  stats["tests_per_ray"] = c.rays ? double(c.tests) / double(c.rays) : 0.0;
+  stats["tests_run_per_ray"] = c.rays ? double(c.tests_run) / double(c.rays) : 0.0;
+  if (uses_grid) {
+    std::vector<int> refs(grid.peCount());
+    for (int pe = 0; pe < grid.peCount(); ++pe) refs[pe] = grid.triangleCountOfPe(pe);
+    MeanMax r = meanMax(refs);
+    stats["grid"] = {{"dims", {grid.info.nx, grid.info.ny, grid.info.nz}},
+                     {"voxels", grid.voxelCount()},
+                     {"pes", grid.peCount()},
+                     {"refs_per_pe_mean", r.mean},
+                     {"refs_per_pe_max", r.max},
+                     {"memory_bytes", grid.memoryBytes()},
+                     {"build_ms", build_ms},
+                     {"margin", grid.margin}};
+  }
+  if (gridrt) {
+    MeanMax rays_pe = meanMax(gridrt->raysPerPe()), tests_pe = meanMax(gridrt->testsPerPe());
+    double frames = double(o.repeat + 1);
+    stats["lists"] = {{"length_mean", c.rays ? double(c.list_entries) / double(c.rays) : 0.0},
+                      {"length_max", gridrt->maxListLengthKnown() ? nlohmann::json(gridrt->maxListLength())
+                                                                : nlohmann::json(nullptr)},
+                      {"list_ms", median(t.lists_ms)}};
+    stats["pe_load"] = {{"rays_mean", rays_pe.mean / frames}, {"rays_max", rays_pe.max / frames},
+                        {"tests_mean", tests_pe.mean / frames},
+                        {"tests_max", tests_pe.max / frames}};
+    stats["interrupt"] = {{"camera_rays", gridrt->cameraInterrupt()},
+                          {"all_rays", gridrt->allInterrupt()},
+                          {"skipped_pairs", c.skipped_pairs}};
+  }
+  if (!o.stats_json.empty()) writeJsonFile(o.stats_json, stats);
+  if (o.stats) std::cout << formatStatisticsTable(stats);
+  if (!o.quiet) printSummary(o, frame, median_frame, intersector->name());
+  return 0;
+}
+
+}  // namespace gridrt

@@ -1,0 +1,37 @@
+// Ray bundles: a batch's rays put in an order where rays that pierce the same voxels sit
+// next to each other, so a PE receives whole runs of consecutive rays (tested 16 at a
+// time from planes, kernels/gridrt_bundles.cl) instead of gathering rays one by one from
+// a traversal list. Which rays each PE receives comes from the shape of the bundle (a
+// voxel's footprint as seen from the rays' common origin, camera_bundles.h), a superset
+// of the rays that pierce the voxel; the kernel's exact slab test, with the 3D-DDA's
+// arithmetic, then keeps the pairs of the traversal lists.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "gridrt_types.h"
+
+namespace gridrt {
+
+// Rays per packet: one float16 lane each.
+constexpr int kBundleLanes = 16;
+// Longest task in packets: bounds a work-group's share so both cores stay busy.
+constexpr int kMaxTaskPackets = 32;
+
+struct RayBundles {
+  // Bundle order -> index of the ray in the batch; -1 marks padding (never pierces).
+  // Its length is a multiple of kBundleLanes.
+  std::vector<int> ray_of;
+  std::vector<GrBundleTask> tasks;
+  size_t out_lanes = 0;  // result lanes of all tasks (each task's rounded up to a packet)
+
+  // Queues PE `pe` for the bundle rays [first, first + count), split into tasks of at
+  // most kMaxTaskPackets packets, each with its own result lanes.
+  void addRange(int pe, int first, int count);
+  void clearTasks() {
+    tasks.clear();
+    out_lanes = 0;
+  }
+};
+
+}  // namespace gridrt

@@ -1,0 +1,552 @@
+#include "gridrt_intersector.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+
+#include "prepared_triangles.h"
+#include "segment_culling.h"
+#include "stopwatch.h"
+
+namespace gridrt {
+
+namespace {
+
+// Maps `count` elements of a device buffer into host memory (no copy on a CPU device).
+// Non-blocking: the pointer is usable once the enclosing runWithHostThreadsAsleep returns.
+template <typename T>
+T* mapBuffer(ClRuntime& rt, cl::Buffer& buffer, cl_map_flags flags, size_t count) {
+  return static_cast<T*>(rt.queue().enqueueMapBuffer(buffer, CL_FALSE, flags, 0,
+                                                     std::max<size_t>(count, 1) * sizeof(T)));
+}
+
+int popcount(int bits) { return __builtin_popcount(unsigned(bits)); }
+
+// Phase 1's results of one batch as the host reads them (GR_RESULT_*, gridrt_types.h).
+struct PacketResults {
+  const float *t = nullptr, *u = nullptr, *v = nullptr;
+  const int *prim = nullptr, *ray = nullptr;  // ray: the list kernel's only
+  const GrPacketMasks* masks = nullptr;
+  PacketResults(const float* results, size_t lanes, int planes) {
+    if (!results) return;
+    t = results + GR_RESULT_T * lanes;
+    prim = reinterpret_cast<const int*>(results + GR_RESULT_PRIM * lanes);
+    u = results + GR_RESULT_U * lanes;
+    v = results + GR_RESULT_V * lanes;
+    if (planes > GR_RESULT_RAY) ray = reinterpret_cast<const int*>(results + GR_RESULT_RAY * lanes);
+    masks = reinterpret_cast<const GrPacketMasks*>(results + size_t(planes) * lanes);
+  }
+  // Phase 2's rule, for both paths: a ray keeps the smallest (t, prim) over its PEs'
+  // in-voxel hits. Hits lie in their own voxels, disjoint intervals of the ray, so this is
+  // the hit of the first PE in the ray's list that has one (the paper's rule); on an exact
+  // tie at a shared boundary the lower triangle index wins, as for every intersector.
+  // Equal (t, prim) from two PEs (one hit on their shared boundary) is the same hit: the
+  // lower PE is named the winner (winner may be null).
+  void keepNearer(size_t lane, int pe, GrHit& best, int* winner) const {
+    const float hit_t = t[lane];
+    const int hit_prim = prim[lane];
+    const bool same = hit_t == best.t && hit_prim == best.prim;
+    if (hit_t < best.t || (hit_t == best.t && hit_prim < best.prim) ||
+        (same && winner && pe < *winner)) {
+      best = GrHit{hit_t, hit_prim, u[lane], v[lane]};
+      if (winner) *winner = pe;
+    }
+  }
+};
+
+}  // namespace
+
+GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid,
+                                     PeInterrupt interrupt,
+                                     const KernelOptions& kernel_options)
+    : rt_(runtime), grid_(grid), interrupt_(interrupt) {
+  const std::string defines =
+      "-DGR_PE_LOCAL_SIZE=" + std::to_string(kPeLocalSize) + " " + segmentCullDefines() + " " +
+      kernel_options.defines();
+  kernel_ = cl::Kernel(rt_.program("gridrt_lists.cl", defines), "gridrt_lists");
+  bundle_kernel_ = cl::Kernel(rt_.program("gridrt_bundles.cl", defines), "gridrt_bundles");
+  checkTriangleLayout(grid.pe_triangles, kernel_options);
+  pe_tri_begin_.uploadNow(rt_, grid.pe_tri_begin);
+  voxel_of_pe_.uploadNow(rt_, grid.voxel_of_pe);
+  pe_triangles_.uploadNow(rt_, grid.pe_triangles);
+  std::vector<float> seg_planes;
+  computeSegmentCullPlanes(grid.pe_triangles, seg_planes);
+  seg_planes_.uploadNow(rt_, seg_planes);
+  seg_stride_ = int(seg_planes.size() / GR_SEG_PLANES);
+  rays_per_pe_.assign(grid.peCount(), 0);
+  tests_per_pe_.assign(grid.peCount(), 0);
+}
+
+void GridRtIntersector::runPes(size_t n, HitMode mode) {
+  const std::vector<GrPeTask>& tasks = bins_.tasks;
+  const size_t lanes = bins_.packets * kPeLanes;
+  const size_t result_floats = GR_LIST_RESULT_PLANES * lanes + 4 * bins_.packets;
+  rt_.runWithHostThreadsAsleep([&] {
+    enqueueUnmaps();
+    enqueueEntriesUnmap();
+    if (tasks.empty()) return;
+    tasks_.upload(rt_, tasks);
+    results_.reserve(rt_, result_floats);
+    first_hit_key_.reserve(rt_, n);
+    if (allInterrupt())
+      rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, n * sizeof(int));
+    kernel_.setArg(0, tasks_.get());
+    kernel_.setArg(1, entries_.get());
+    kernel_.setArg(2, pe_tri_begin_.get());
+    kernel_.setArg(3, pe_triangles_.get());
+    kernel_.setArg(4, results_.get());
+    kernel_.setArg(5, int(lanes));
+    kernel_.setArg(6, first_hit_key_.get());
+    kernel_.setArg(7, mode == HitMode::AnyHit ? 1 : 0);
+    kernel_.setArg(8, allInterrupt() ? 1 : 0);
+    kernel_.setArg(9, seg_planes_.get());
+    kernel_.setArg(10, seg_stride_);
+    rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
+                                     cl::NDRange(tasks.size() * kPeLocalSize),
+                                     cl::NDRange(kPeLocalSize));
+    results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
+    // Mapped again for the next batch's pairs once the kernel has read them.
+    entries_map_ = mapBuffer<float>(rt_, entries_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
+                                    entries_.capacity());
+  });
+}
+
+GridRtIntersector::~GridRtIntersector() {
+  if (!results_map_ && !planes_map_ && !entries_map_) return;
+  try {
+    rt_.runWithHostThreadsAsleep([&] {
+      enqueueUnmaps();
+      enqueuePlanesUnmap();
+      enqueueEntriesUnmap();
+    });
+  } catch (...) {
+    // The context goes with the runtime anyway.
+  }
+}
+
+void GridRtIntersector::enqueueUnmaps() {
+  if (results_map_)
+    rt_.queue().enqueueUnmapMemObject(results_.get(), const_cast<float*>(results_map_));
+  results_map_ = nullptr;
+}
+
+void GridRtIntersector::enqueueEntriesUnmap() {
+  if (entries_map_) rt_.queue().enqueueUnmapMemObject(entries_.get(), entries_map_);
+  entries_map_ = nullptr;
+}
+
+void GridRtIntersector::enqueuePlanesUnmap() {
+  if (planes_map_) rt_.queue().enqueueUnmapMemObject(planes_.get(), planes_map_);
+  planes_map_ = nullptr;
+}
+
+void GridRtIntersector::finishBatch(const std::vector<int>& pairs_per_pe, size_t rays,
+                                    uint64_t tests, uint64_t tests_run, size_t pairs,
+                                    uint64_t skipped) {
+  for (int pe = 0; pe < grid_.peCount(); ++pe) {
+    rays_per_pe_[pe] += pairs_per_pe[pe];
+    tests_per_pe_[pe] += uint64_t(pairs_per_pe[pe]) * grid_.triangleCountOfPe(pe);
+  }
+  counters_.rays += rays;
+  counters_.tests += tests;
+  counters_.tests_run += tests_run;
+  counters_.list_entries += pairs;
+  counters_.skipped_pairs += skipped;
+}
+
+void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
+                                  std::vector<GrHit>& hits, RayDiagnostics* diagnostics) {
+  const size_t n = rays.size();
+  hits.resize(n);
+  Stopwatch clock;
+  computeTraversalLists(grid_, rays.data(), n, lists_);
+  // The pairs go straight into the device buffer, left mapped by the previous batch.
+  const size_t pair_floats =
+      maxPairPackets(lists_.entries.size(), grid_.peCount()) * kPairPacketFloats;
+  if (!entries_map_ || entries_.capacity() < pair_floats) {
+    rt_.runWithHostThreadsAsleep([&] {
+      enqueueUnmaps();
+      enqueueEntriesUnmap();
+      entries_.reserve(rt_, pair_floats);
+      entries_map_ = mapBuffer<float>(rt_, entries_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
+                                      entries_.capacity());
+    });
+  }
+  binByPe(lists_, rays.data(), grid_.peCount(), kPeTaskRays, bins_, entries_map_);
+  counters_.lists_ms += clock.ms();
+
+  clock.restart();
+  runPes(n, mode);
+  counters_.kernel_ms += clock.ms();
+
+  // Phase 2: per ray, the smallest (t, prim) over its PEs' in-voxel hits
+  // (PacketResults::keepNearer). Each thread owns a range of rays and picks their lanes
+  // out of the packets' hit (and skip) masks; the tests are counted per task.
+  clock.restart();
+  if (diagnostics) {
+    diagnostics->tests.assign(n, 0);
+    diagnostics->winning_pe.assign(n, -1);
+    diagnostics->list_length.assign(n, 0);
+  }
+  const PacketResults results(results_map_, bins_.packets * kPeLanes, GR_LIST_RESULT_PLANES);
+  const std::vector<GrPeTask>& tasks = bins_.tasks;
+  uint64_t tests = 0, tests_run = 0, skipped = 0, longest = 0;
+#pragma omp parallel reduction(+ : tests, tests_run, skipped) reduction(max : longest)
+  {
+    const int me = omp_get_thread_num(), count = omp_get_num_threads();
+    const long long lo = (long long)(n * me / count), hi = (long long)(n * (me + 1) / count);
+    for (long long r = lo; r < hi; ++r) {
+      hits[r] = GrHit{rays[r].tmax, -1, 0.0f, 0.0f};
+      const int length = lists_.lengthOf(r);
+      longest = std::max<uint64_t>(longest, uint64_t(length));
+      if (diagnostics) {
+        diagnostics->list_length[r] = length;
+        int ray_tests = 0;
+        for (int s = lists_.begin[r]; s < lists_.begin[r + 1]; ++s)
+          ray_tests += grid_.triangleCountOfPe(lists_.entries[s].pe);
+        diagnostics->tests[r] = ray_tests;  // less its skipped pairs, below
+      }
+    }
+    for (size_t k = 0; k < tasks.size(); ++k) {
+      const GrPeTask& task = tasks[k];
+      const int cost = grid_.triangleCountOfPe(task.pe);
+      const int packets = (task.pair_count + kPeLanes - 1) / kPeLanes;
+      for (int p = task.first_packet; p < task.first_packet + packets; ++p) {
+        const GrPacketMasks& m = results.masks[p];
+        if (int(k % size_t(count)) == me) {
+          tests += uint64_t(popcount(m.pierced & ~m.skipped)) * cost;
+          tests_run += uint64_t(m.tests);
+          skipped += popcount(m.skipped);
+        }
+        for (int bits = m.hit | (diagnostics ? m.skipped : 0); bits; bits &= bits - 1) {
+          const int lane = __builtin_ctz(unsigned(bits));
+          const size_t at = size_t(p) * kPeLanes + lane;
+          const int ray = results.ray[at];
+          if (ray < lo || ray >= hi) continue;
+          if (m.skipped & (1 << lane)) {
+            diagnostics->tests[ray] -= cost;
+            continue;
+          }
+          results.keepNearer(at, task.pe, hits[ray],
+                             diagnostics ? &diagnostics->winning_pe[ray] : nullptr);
+        }
+      }
+    }
+  }
+  max_list_length_ = std::max(max_list_length_, longest);
+  finishBatch(bins_.pairs_per_pe, n, tests, tests_run, lists_.entries.size(), skipped);
+  counters_.reduce_ms += clock.ms();
+}
+
+void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vector<GrRay>& rays,
+                                         std::vector<GrHit>& hits, RayDiagnostics* diagnostics) {
+  Stopwatch clock;
+  bundleCameraRays(grid_, view, camera_bundles_, cameraInterrupt(), camera_scratch_);
+  counters_.lists_ms += clock.ms();
+  const GrCullFrame frame = cullFrameOf(view);
+  intersectBundles(rays, camera_bundles_, HitMode::Closest, cameraInterrupt(), hits, diagnostics,
+                   &frame);
+}
+
+void GridRtIntersector::intersectTowardsPoint(const glm::vec3& point,
+                                              const std::vector<GrRay>& rays, HitMode mode,
+                                              std::vector<GrHit>& hits) {
+  if (!force_light_bundles_ && rays.size() < kMinLightBundleRays) {
+    intersect(rays, mode, hits, nullptr);
+    return;
+  }
+  Stopwatch clock;
+  bundleLightRays(grid_, point, rays.data(), rays.size(), light_bundles_, light_scratch_);
+  counters_.lists_ms += clock.ms();
+  if (!force_light_bundles_ && light_bundles_.out_lanes > kMaxLightBundleLanesPerRay * rays.size()) {
+    intersect(rays, mode, hits, nullptr);
+    return;
+  }
+  intersectBundles(rays, light_bundles_, mode, allInterrupt(), hits, nullptr);
+}
+
+GrCullFrame GridRtIntersector::prepareCulling(bool allowed, const GrCullFrame& frame,
+                                              const GrRay& common) {
+  // Culling needs every hit at t > 0 in front of the origin (packet_culling.h).
+  if (!allowed || !(common.tmin >= 0.0f)) return GrCullFrame{};
+  const glm::vec3 origin(common.ox, common.oy, common.oz);
+  if (cull_cache_.update(frame, origin, grid_.pe_triangles))
+    cull_planes_.uploadNow(rt_, cull_cache_.planes());
+  return frame;
+}
+
+void GridRtIntersector::generateAndIntersectPrimary(const PinholeView& view,
+                                                    const CameraRayGenerator& camera,
+                                                    std::vector<GrRay>& rays,
+                                                    std::vector<GrHit>& hits,
+                                                    RayDiagnostics* diagnostics) {
+  // Rays of a camera without one eye: made first, then traced as any batch of them.
+  if (!camera.pinhole()) {
+    Intersector::generateAndIntersectPrimary(view, camera, rays, hits, diagnostics);
+    return;
+  }
+  Stopwatch clock;
+  bundleCameraRays(grid_, view, camera_bundles_, cameraInterrupt(), camera_scratch_);
+  counters_.lists_ms += clock.ms();
+  const GrCullFrame frame = cullFrameOf(view);
+  const PixelWindow& w = view.window;
+  const int ww = w.width(), wh = w.height();
+  rays.resize(size_t(ww) * wh);
+  // The camera bundles' layout (camera_bundles.h): 4x4-pixel tiles, row by row, so tile
+  // row ty holds the slots [ty * tiles_x * 16, (ty + 1) * tiles_x * 16) and the pixels of
+  // rows 4 ty .. 4 ty + 3 of the window.
+  const int tiles_x = (ww + kTileSize - 1) / kTileSize, tiles_y = (wh + kTileSize - 1) / kTileSize;
+  const size_t band_slots = size_t(tiles_x) * kTileSize * kTileSize;
+  PlaneFill fill;
+  fill.common = camera(w.x0, w.y0, 0.5f, 0.5f);
+  fill.write = [&](float* planes, size_t stride, int& differing, int& uncovered) {
+    float* dx = planes + GR_PLANE_DX * stride;
+    float* dy = planes + GR_PLANE_DY * stride;
+    float* dz = planes + GR_PLANE_DZ * stride;
+    // Each row's directions come out of centreRow as three arrays, one tile column (4
+    // lanes) after another; row ly of a tile row fills lanes 4 ly .. 4 ly + 3 of each of
+    // its tiles. Past the window's right edge and bottom the lanes are padding (zero).
+    const size_t row_floats = size_t(tiles_x) * kTileSize;
+    camera_rows_.resize(omp_get_max_threads());
+    int u = 0;
+#pragma omp parallel reduction(+ : u)
+    {
+      std::vector<float>& row = camera_rows_[omp_get_thread_num()];
+      row.assign(3 * row_floats, 0.0f);
+      float *rdx = row.data(), *rdy = rdx + row_floats, *rdz = rdy + row_floats;
+#pragma omp for schedule(static)
+      for (int ty = 0; ty < tiles_y; ++ty) {
+        for (int ly = 0; ly < kTileSize; ++ly) {
+          const int y = ty * kTileSize + ly;
+          if (y < wh) {
+            camera.centreRow(w.y0 + y, w.x0, w.x1, rays.data() + size_t(y) * ww, rdx, rdy, rdz);
+            // The frame's cover (packet_culling.h).
+            for (int x = 0; x < ww; ++x)
+              u += !cullFrameCovers(frame, GrRay{0, 0, 0, 0, rdx[x], rdy[x], rdz[x], 0});
+          } else {
+            std::fill(row.begin(), row.end(), 0.0f);
+          }
+          const size_t b0 = size_t(ty) * band_slots + size_t(ly) * kTileSize;
+          for (int tx = 0; tx < tiles_x; ++tx)
+            for (int lx = 0; lx < kTileSize; ++lx) {
+              const size_t b = b0 + size_t(tx) * kBundleLanes + lx, x = size_t(tx) * kTileSize + lx;
+              dx[b] = rdx[x];
+              dy[b] = rdy[x];
+              dz[b] = rdz[x];
+            }
+        }
+      }
+    }
+    for (size_t b = size_t(tiles_y) * band_slots; b < stride; ++b) dx[b] = dy[b] = dz[b] = 0.0f;
+    // A pinhole camera's rays all start at its eye, over [0, inf) (CameraRayGenerator::pinhole).
+    differing = 0;
+    uncovered = u;
+  };
+  intersectBundles(rays, camera_bundles_, HitMode::Closest, cameraInterrupt(), hits, diagnostics,
+                   &frame, &fill);
+}
+
+void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const RayBundles& bundles,
+                                         HitMode mode, bool interrupt, std::vector<GrHit>& hits,
+                                         RayDiagnostics* diagnostics,
+                                         const GrCullFrame* cull_frame, const PlaneFill* fill) {
+  const size_t n = rays.size();
+  hits.resize(n);
+  const size_t slots = bundles.ray_of.size();
+  // A packet may read up to 15 rays past its task's end: one packet of padding.
+  const size_t stride = slots + kBundleLanes;
+  Stopwatch clock;
+
+  // Phase 1: the rays in bundle order, as planes, straight into the device buffer: the
+  // directions always (a zero direction marks padding); origins and intervals only when
+  // the rays do not all share those of the first ray (camera rays do). Rays without a
+  // culling frame (shadow rays: each from its own hit point) get all planes in one pass.
+  // The previous bundle batch left the buffer mapped for this one: a map of its own
+  // would cost a wait on the device.
+  float* planes = planes_map_;
+  if (!planes || planes_.capacity() < GR_PLANES * stride) {
+    rt_.runWithHostThreadsAsleep([&] {
+      enqueueUnmaps();
+      enqueuePlanesUnmap();
+      planes_.reserve(rt_, GR_PLANES * stride);
+      planes = planes_map_ = mapBuffer<float>(rt_, planes_.get(),
+                                              CL_MAP_WRITE_INVALIDATE_REGION, planes_.capacity());
+    });
+  }
+  int differing = 0, uncovered = 0;
+  if (fill) fill->write(planes, stride, differing, uncovered);
+  const GrRay common = fill ? fill->common : n ? rays[0] : GrRay{};
+  auto sameStart = [&](const GrRay& r) {
+    return r.ox == common.ox && r.oy == common.oy && r.oz == common.oz &&
+           r.tmin == common.tmin && r.tmax == common.tmax;
+  };
+  // Rays off the culling frame's forward count as uncovered (padding does not count);
+  // without a frame (light bundles) nothing is checked.
+  const bool check_cover = cull_frame != nullptr;
+  const GrCullFrame frame = check_cover ? *cull_frame : GrCullFrame{};
+  auto writeStarts = [&](long long b, const GrRay& ray) {
+    planes[GR_PLANE_OX * stride + b] = ray.ox;
+    planes[GR_PLANE_OY * stride + b] = ray.oy;
+    planes[GR_PLANE_OZ * stride + b] = ray.oz;
+    planes[GR_PLANE_TMIN * stride + b] = ray.tmin;
+    planes[GR_PLANE_TMAX * stride + b] = ray.tmax;
+  };
+  if (check_cover && !fill) {
+    // In ray order (sequential reads; the bundle order holds every ray once, and padding).
+#pragma omp parallel for simd schedule(static) reduction(+ : differing, uncovered)
+    for (long long r = 0; r < (long long)n; ++r) {
+      differing += !sameStart(rays[r]);
+      uncovered += !cullFrameCovers(frame, rays[r]);
+    }
+  }
+  if (!fill) {
+#pragma omp parallel for schedule(static)
+    for (long long b = 0; b < (long long)stride; ++b) {
+      const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
+      const GrRay& ray = r >= 0 ? rays[r] : common;
+      planes[GR_PLANE_DX * stride + b] = r >= 0 ? ray.dx : 0.0f;
+      planes[GR_PLANE_DY * stride + b] = r >= 0 ? ray.dy : 0.0f;
+      planes[GR_PLANE_DZ * stride + b] = r >= 0 ? ray.dz : 0.0f;
+      if (!check_cover) writeStarts(b, ray);
+    }
+  }
+  // Shadow rays (no frame) never share an origin: their starts are written above.
+  const bool common_origin = check_cover && differing == 0;
+  if (!common_origin && check_cover) {
+#pragma omp parallel for schedule(static)
+    for (long long b = 0; b < (long long)stride; ++b) {
+      const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
+      writeStarts(b, r >= 0 ? rays[r] : common);
+    }
+  }
+  const size_t lanes = bundles.out_lanes, packets = lanes / kBundleLanes;
+  rt_.runWithHostThreadsAsleep([&] {
+    enqueueUnmaps();
+    enqueuePlanesUnmap();
+    if (bundles.tasks.empty()) return;
+    bundle_tasks_.upload(rt_, bundles.tasks);
+    // t, prim, u, v per lane, then the packets' masks (4 ints each): one buffer.
+    const size_t result_floats = GR_BUNDLE_RESULT_PLANES * lanes + 4 * packets;
+    results_.reserve(rt_, result_floats);
+    first_hit_key_.reserve(rt_, stride);
+    if (interrupt)
+      rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, stride * sizeof(int));
+    cl::Kernel& k = bundle_kernel_;
+    k.setArg(0, bundle_tasks_.get());
+    k.setArg(1, planes_.get());
+    int arg = 2;
+    k.setArg(arg++, int(stride));
+    k.setArg(arg++, common_origin ? 1 : 0);
+    k.setArg(arg++, common);
+    k.setArg(arg++, grid_.info);
+    k.setArg(arg++, voxel_of_pe_.get());
+    k.setArg(arg++, pe_tri_begin_.get());
+    k.setArg(arg++, pe_triangles_.get());
+    k.setArg(arg++, results_.get());
+    k.setArg(arg++, int(lanes));
+    k.setArg(arg++, first_hit_key_.get());
+    k.setArg(arg++, mode == HitMode::AnyHit ? 1 : 0);
+    k.setArg(arg++, interrupt ? 1 : 0);
+    const GrCullFrame culling =
+        prepareCulling(check_cover && uncovered == 0 && common_origin, frame, common);
+    packet_culling_used_ = culling.enabled != 0.0f;
+    k.setArg(arg++, culling);
+    k.setArg(arg++, cull_planes_.reserve(rt_, 1));
+    k.setArg(arg++, int(cull_cache_.stride()));
+    k.setArg(arg++, seg_planes_.get());
+    k.setArg(arg++, seg_stride_);
+    rt_.queue().enqueueNDRangeKernel(k, cl::NullRange,
+                                     cl::NDRange(bundles.tasks.size() * kPeLocalSize),
+                                     cl::NDRange(kPeLocalSize));
+    results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
+    // Mapped again for the next bundle batch once the kernel has read it.
+    planes_map_ = mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
+                                   planes_.capacity());
+  });
+  const PacketResults results(results_map_, lanes, GR_BUNDLE_RESULT_PLANES);
+  counters_.kernel_ms += clock.ms();
+
+  // Phase 2: per ray, the smallest (t, prim) over its PEs' in-voxel hits
+  // (PacketResults::keepNearer). Each thread owns a range of bundle order and reads the
+  // part of every task that falls in it.
+  clock.restart();
+  if (diagnostics) {
+    diagnostics->tests.assign(n, 0);
+    diagnostics->winning_pe.assign(n, -1);
+    diagnostics->list_length.assign(n, 0);
+  }
+  const int threads = omp_get_max_threads();
+  thread_pe_pairs_.resize(threads);
+  uint64_t tests = 0, tests_run = 0, skipped = 0, pairs = 0;
+  const auto& tasks = bundles.tasks;
+  std::vector<int>* winners = diagnostics ? &diagnostics->winning_pe : nullptr;
+#pragma omp parallel num_threads(threads) reduction(+ : tests, tests_run, skipped, pairs)
+  {
+    const int me = omp_get_thread_num(), count = omp_get_num_threads();
+    std::vector<int>& pe_pairs = thread_pe_pairs_[me];
+    pe_pairs.assign(grid_.peCount(), 0);
+    const size_t chunk = (slots / kBundleLanes + count - 1) / count * kBundleLanes;
+    const long long lo = (long long)std::min(slots, size_t(me) * chunk);
+    const long long hi = (long long)std::min(slots, size_t(lo) + chunk);
+    // Every ray a miss to begin with, written in ray order (in bundle order it would be a
+    // scatter); the loop's barrier comes before the hits below.
+#pragma omp for schedule(static)
+    for (long long r = 0; r < (long long)n; ++r)
+      hits[r] = GrHit{common_origin ? common.tmax : rays[r].tmax, -1, 0.0f, 0.0f};
+    // Bundle order maps to distinct rays, so the threads write disjoint hits.
+    for (const GrBundleTask& task : tasks) {
+      const long long first = std::max<long long>(task.first_ray, lo);
+      const long long last = std::min<long long>(task.first_ray + task.ray_count, hi);
+      if (first >= last) continue;
+      const int cost = grid_.triangleCountOfPe(task.pe);
+      for (int p = int(first - task.first_ray) / kBundleLanes;
+           p * kBundleLanes < last - task.first_ray; ++p) {
+        const long long base = task.first_ray + p * kBundleLanes;
+        // The lanes of this packet inside [first, last).
+        int in_range = 0xFFFF;
+        if (base < first) in_range &= 0xFFFF << int(first - base);
+        if (base + kBundleLanes > last) in_range &= 0xFFFF >> int(base + kBundleLanes - last);
+        const GrPacketMasks& m = results.masks[task.out_first / kBundleLanes + p];
+        // A packet's tests count in the thread whose range holds its first lane.
+        if (base >= lo) tests_run += uint64_t(m.tests);
+        const int pierced = m.pierced & in_range, tested = pierced & ~m.skipped;
+        if (!pierced) continue;
+        pairs += popcount(pierced);
+        skipped += popcount(pierced & m.skipped);
+        tests += uint64_t(popcount(tested)) * cost;
+        pe_pairs[task.pe] += popcount(pierced);
+        if (diagnostics)
+          for (int bits = pierced; bits; bits &= bits - 1) {
+            const int k = __builtin_ctz(unsigned(bits));
+            const int ray = bundles.ray_of[base + k];
+            ++diagnostics->list_length[ray];
+            if (tested & (1 << k)) diagnostics->tests[ray] += cost;
+          }
+        const int out = task.out_first + p * kBundleLanes;
+        for (int bits = m.hit & in_range; bits; bits &= bits - 1) {
+          const int k = __builtin_ctz(unsigned(bits));
+          const int ray = bundles.ray_of[base + k];
+          results.keepNearer(size_t(out + k), task.pe, hits[ray],
+                             winners ? &(*winners)[ray] : nullptr);
+        }
+      }
+    }
+  }
+  if (diagnostics) {
+    list_length_known_ = true;
+    for (int length : diagnostics->list_length)
+      max_list_length_ = std::max<uint64_t>(max_list_length_, length);
+  } else {
+    list_length_known_ = false;
+  }
+  std::vector<int>& pe_pairs = thread_pe_pairs_[0];
+  for (size_t t = 1; t < thread_pe_pairs_.size(); ++t)
+    for (int pe = 0; pe < grid_.peCount(); ++pe) pe_pairs[pe] += thread_pe_pairs_[t][pe];
+  finishBatch(pe_pairs, n, tests, tests_run, pairs, skipped);
+  counters_.reduce_ms += clock.ms();
+}
+
+}  // namespace gridrt
+

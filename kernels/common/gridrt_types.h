@@ -1,0 +1,159 @@
+/* Struct layouts shared by the host (C++) and the kernels (OpenCL C 1.2).
+ * One truth: both include this file; the host pins every size with static_assert (end of
+ * file). No float3 (16 bytes in OpenCL C): scalars only. */
+#ifndef GRIDRT_TYPES_H
+#define GRIDRT_TYPES_H
+
+#ifdef __OPENCL_C_VERSION__
+#define GR_FN static inline
+#else
+#define GR_FN static inline
+#endif
+
+/* A ray: origin, direction (unit length), and the open interval (tmin, tmax) searched. */
+typedef struct {
+  float ox, oy, oz, tmin;
+  float dx, dy, dz, tmax;
+} GrRay; /* 32 bytes */
+
+/* A triangle prepared for the intersectors: first vertex and the two edges from it
+ * (Moeller-Trumbore). In the watertight build the e fields hold the vertices v1 and v2
+ * themselves: v0 + e1 in float does not always give back v1, and neighbours must share
+ * their edge vertices bit for bit to be watertight. */
+typedef struct {
+  float v0x, v0y, v0z;
+  float e1x, e1y, e1z;
+  float e2x, e2y, e2z;
+  int prim;          /* global triangle index in load order */
+  int vertex_layout; /* 1: e1/e2 hold v1/v2 (watertight build), 0: edges */
+  int pad1;
+} GrTriangle; /* 48 bytes */
+
+/* The closest hit found for one ray (or one ray inside one PE): prim < 0 means none. */
+typedef struct {
+  float t;
+  int prim;
+  float u, v; /* barycentrics of vertices 1 and 2 */
+} GrHit; /* 16 bytes */
+
+/* The uniform grid as the kernels see it. */
+typedef struct {
+  float minx, miny, minz, pad0;
+  float cellx, celly, cellz, pad1; /* voxel size per axis */
+  int nx, ny, nz, pe_count;
+} GrGridInfo; /* 48 bytes */
+
+/* The list path's (ray, PE) pairs, binned per PE, 16 to a packet (a work-item's lanes),
+ * each carrying its ray, so a work-item loads its packet, one vload16 per plane, instead
+ * of gathering rays: plane q of lane k at gr_pair_value(q, k) (structure of arrays). RAY
+ * (the ray's index in the batch) holds int bits. Lanes past a part's last pair are zero. */
+#define GR_PAIR_LANES 16
+#define GR_PAIR_OX 0
+#define GR_PAIR_OY 1
+#define GR_PAIR_OZ 2
+#define GR_PAIR_DX 3
+#define GR_PAIR_DY 4
+#define GR_PAIR_DZ 5
+#define GR_PAIR_TMIN 6
+#define GR_PAIR_TMAX 7
+#define GR_PAIR_T_ENTER 8 /* ray parameter where the ray enters the PE's voxel */
+#define GR_PAIR_T_EXIT 9  /* ... and where it leaves it */
+#define GR_PAIR_RAY 10
+#define GR_PAIR_PLANES 11
+#define gr_pair_value(q, k) ((q) * GR_PAIR_LANES + (k))
+
+/* One work-group's share of one PE: the pair_count pairs from packet first_packet on
+ * (work-item w takes packet first_packet + w, and writes that packet's results). */
+typedef struct {
+  int pe;
+  int first_packet;
+  int pair_count;
+  int pad;
+} GrPeTask; /* 16 bytes */
+
+/* Ray bundles (host/gridrt/bundles/ray_bundles.h): rays reordered so that rays close in direction sit
+ * next to each other, stored as planes (structure of arrays), tested 16 at a time. A task
+ * is one work-group's share of one PE: the bundle-order rays [first_ray, first_ray +
+ * ray_count), whose 16-ray packets write their results from lane out_first (a multiple
+ * of 16) and their masks from packet out_first / 16. */
+typedef struct {
+  int pe;
+  int first_ray;
+  int ray_count;
+  int out_first;
+} GrBundleTask; /* 16 bytes */
+
+/* Phase 1's results, one buffer a batch, for both kernels: planes of `lanes` values each
+ * (packet p's lane k at p * 16 + k), t, prim, u and v (written for the packets with a
+ * hit), then for the list kernel RAY (the lane's ray, for packets with a hit or a skip),
+ * then one GrPacketMasks per packet. prim and RAY hold int bits. */
+#define GR_RESULT_T 0
+#define GR_RESULT_PRIM 1
+#define GR_RESULT_U 2
+#define GR_RESULT_V 3
+#define GR_RESULT_RAY 4
+#define GR_BUNDLE_RESULT_PLANES 4
+#define GR_LIST_RESULT_PLANES 5
+
+/* What one packet of one task did, one bit per lane. */
+typedef struct {
+  int pierced; /* the ray pierces the PE's voxel (the pair is in its traversal list) */
+  int hit;     /* ... and has a hit inside it (t, prim, u, v written for this lane) */
+  int skipped; /* ... and was skipped by the interrupt (an earlier PE had a hit) */
+  int tests;   /* ray-triangle tests the packet ran after culling (triangles x active lanes) */
+} GrPacketMasks; /* 16 bytes */
+
+/* Packet culling for rays with a common origin (host/gridrt/culling/packet_culling.h): a direction d is
+ * put on the tangent plane of the frame as a = d.r / d.f, b = d.u / d.f; a packet's box
+ * over its lanes' (a, b) that misses a triangle's conservative box (read from four planes,
+ * CullPlaneCache) skips the triangle. */
+typedef struct {
+  float fx, fy, fz, enabled; /* forward: every culled ray has d.f > 0; enabled 0: no culling */
+  float rx, ry, rz, pad0;
+  float ux, uy, uz, pad1;
+} GrCullFrame; /* 48 bytes */
+
+/* The planes of a bundle buffer, each `stride` floats long. */
+#define GR_PLANE_OX 0
+#define GR_PLANE_OY 1
+#define GR_PLANE_OZ 2
+#define GR_PLANE_DX 3
+#define GR_PLANE_DY 4
+#define GR_PLANE_DZ 5
+#define GR_PLANE_TMIN 6
+#define GR_PLANE_TMAX 7
+#define GR_PLANES 8
+
+/* Segment culling for rays with their own origins (host/gridrt/culling/segment_culling.h): per PE
+ * triangle (pe_triangles order) the planes below, each `stride` floats long: the three
+ * vertices as the ray/triangle test sees them, n = e1 x e2, |e1| |e2| (the test's scale;
+ * +infinity for a degenerate triangle, never culled) and |v0|_1 + |e1| + |e2| (its reach
+ * from the world origin, for the rounding margin). */
+#define GR_SEG_V0X 0
+#define GR_SEG_V0Y 1
+#define GR_SEG_V0Z 2
+#define GR_SEG_V1X 3
+#define GR_SEG_V1Y 4
+#define GR_SEG_V1Z 5
+#define GR_SEG_V2X 6
+#define GR_SEG_V2Y 7
+#define GR_SEG_V2Z 8
+#define GR_SEG_NX 9
+#define GR_SEG_NY 10
+#define GR_SEG_NZ 11
+#define GR_SEG_SCALE 12
+#define GR_SEG_REACH 13
+#define GR_SEG_PLANES 14
+
+#ifndef __OPENCL_C_VERSION__
+static_assert(sizeof(GrRay) == 32, "GrRay layout");
+static_assert(sizeof(GrTriangle) == 48, "GrTriangle layout");
+static_assert(sizeof(GrHit) == 16, "GrHit layout");
+static_assert(sizeof(GrGridInfo) == 48, "GrGridInfo layout");
+static_assert(sizeof(GrPeTask) == 16, "GrPeTask layout");
+static_assert(sizeof(GrBundleTask) == 16, "GrBundleTask layout");
+static_assert(sizeof(GrPacketMasks) == 16, "GrPacketMasks layout");
+static_assert(sizeof(GrCullFrame) == 48, "GrCullFrame layout");
+#endif
+
+#endif

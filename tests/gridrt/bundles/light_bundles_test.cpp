@@ -1,0 +1,114 @@
+// Light bundles' cells (host/gridrt/bundles/light_bundles.h): the cells a voxel's projected outline
+// covers must hold every ray whose face coordinate lies in the outline up to rounding.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "light_bundles.h"
+
+namespace gridrt {
+namespace {
+
+// A face of 64 x 64 cells over [-1, 1]^2: cell boundaries at -1 + k / 32, exact in float.
+FaceWindow gridOf64() {
+  FaceWindow w;
+  w.umin = w.vmin = -1.0f;
+  w.umax = w.vmax = 1.0f;
+  w.count = 64 * 64 * 8;
+  w.layout(0, 0);
+  return w;
+}
+
+// The column a ray with face coordinates (u, 0) falls in.
+int columnOf(const FaceWindow& w, float u) { return int(w.cellOf(u, 0.0f) % size_t(w.res)); }
+
+// `ulps` float steps from x towards `to`.
+float stepped(float x, float to, int ulps) {
+  for (int k = 0; k < ulps; ++k) x = std::nextafter(x, to);
+  return x;
+}
+
+TEST(LightBundles, FaceWindowOfTheTestHas64Columns) {
+  const FaceWindow w = gridOf64();
+  ASSERT_EQ(w.res, 64);
+  EXPECT_EQ(columnOf(w, -0.5f), 16);
+  EXPECT_EQ(columnOf(w, std::nextafter(-0.5f, -1.0f)), 15);
+}
+
+// A box corner's face coordinate and a ray's are each a few roundings from exact
+// (kLightFaceMargin): a ray 4 ulps outside an outline that ends on a cell boundary lies
+// in the next cell, which the outline's range must include. Without the margin 48 of the
+// 64 cases below fail (in the other 16, u - u0 rounds the outline's end onto the
+// boundary). Boundaries with |u| >= 0.5 only: nearer 0 the ulps of u are below those of
+// u - u0 and vanish in the cell arithmetic.
+TEST(LightBundles, CellRangeHoldsCoordinatesAFewUlpsOutsideTheOutline) {
+  const FaceWindow w = gridOf64();
+  int failures = 0, checked = 0;
+  for (int k = 1; k < 64; ++k) {
+    const float boundary = -1.0f + float(k) / 32.0f;
+    if (std::fabs(boundary) < 0.5f) continue;
+    checked += 2;
+    int c0, c1;
+    // The outline starts on the boundary; the ray lies just below it.
+    w.cellRange(boundary, 0.99f, w.u0, w.su, c0, c1);
+    const int below = columnOf(w, stepped(boundary, -2.0f, 4));
+    ASSERT_EQ(below, k - 1) << "boundary " << boundary;
+    failures += !(c0 <= below && below < c1);
+    // The outline ends one ulp below the boundary; the ray lies 4 ulps above that end.
+    const float end = std::nextafter(boundary, -2.0f);
+    w.cellRange(-0.99f, end, w.u0, w.su, c0, c1);
+    const int above = columnOf(w, stepped(end, 2.0f, 4));
+    ASSERT_EQ(above, k) << "boundary " << boundary;
+    failures += !(c0 <= above && above < c1);
+  }
+  EXPECT_EQ(checked, 64);
+  EXPECT_EQ(failures, 0);
+}
+
+// The margin is relative: far outside the window (a corner projected near the light's
+// plane) it still covers a few ulps, and it never reaches a whole cell of this face.
+TEST(LightBundles, CellRangeMarginStaysBelowACell) {
+  const FaceWindow w = gridOf64();
+  int c0, c1;
+  w.cellRange(-0.5f, -0.5f + 1.0f / 64.0f, w.u0, w.su, c0, c1);  // half a cell wide
+  EXPECT_EQ(c0, 15);  // the margin reaches just below the boundary at -0.5
+  EXPECT_EQ(c1, 17);
+  w.cellRange(-0.25f + 1e-3f, -0.25f + 2e-3f, w.u0, w.su, c0, c1);  // inside one cell
+  EXPECT_EQ(c0, 24);
+  EXPECT_EQ(c1, 25);
+  w.cellRange(5.0f, 1e30f, w.u0, w.su, c0, c1);  // right of the window: nothing
+  EXPECT_EQ(c0, 64);
+  EXPECT_EQ(c1, 64);
+}
+
+// The slack of light bundles must bound how far each ray's exact end o + tmax * d lies
+// from the light. Rays built so that their float end is the light itself (o = -(tmax * d)
+// in float, the light at the origin) still miss it by the rounding of tmax * d: their
+// measured distance is 0, and only the rounding term (kLightEndRoundingEpsilons) covers
+// them. Without it every one of these rays falls short.
+TEST(LightBundles, MissOfLightBoundsTheExactEndsDistance) {
+  const glm::vec3 light(0.0f);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), length(1.0f, 1000.0f);
+  int float_end_on_light = 0, short_of_exact = 0;
+  for (int k = 0; k < 10000; ++k) {
+    const glm::vec3 d = glm::normalize(glm::vec3(unit(rng), unit(rng), unit(rng)));
+    const float tmax = length(rng);
+    const glm::vec3 step = tmax * d;
+    const GrRay ray{-step.x, -step.y, -step.z, 0.0f, d.x, d.y, d.z, tmax};
+    const glm::vec3 float_end = glm::vec3(ray.ox, ray.oy, ray.oz) + ray.tmax * d;
+    float_end_on_light += float_end == light;
+    // The exact end, in double (a float product is exact there; the sum rounds far below).
+    const double ex = double(ray.ox) + double(tmax) * double(d.x);
+    const double ey = double(ray.oy) + double(tmax) * double(d.y);
+    const double ez = double(ray.oz) + double(tmax) * double(d.z);
+    const double exact_miss = std::sqrt(ex * ex + ey * ey + ez * ez);
+    short_of_exact += double(missOfLight(ray, light)) < exact_miss;
+  }
+  EXPECT_EQ(float_end_on_light, 10000);
+  EXPECT_EQ(short_of_exact, 0);
+}
+
+}  // namespace
+}  // namespace gridrt

@@ -1,0 +1,760 @@
+// Tests of the glTF loader: small documents built here with their buffers embedded as base64
+// data URIs, plus the model scenes (see scenes/models/SOURCES.md).
+#include "gltf_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "errors.h"
+#include "test_support.h"
+
+namespace gridrt {
+namespace {
+
+constexpr int kUByte = 5121, kUShort = 5123, kUInt = 5125, kFloat = 5126;
+constexpr float kTol = 1e-5f;
+
+std::string base64(const std::string& bytes) {
+  static const char* kDigits =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    uint32_t v = uint32_t(uint8_t(bytes[i])) << 16 | uint32_t(uint8_t(bytes[i + 1])) << 8 |
+                 uint8_t(bytes[i + 2]);
+    for (int s = 18; s >= 0; s -= 6) out += kDigits[(v >> s) & 63];
+  }
+  if (i < bytes.size()) {
+    uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
+    if (i + 1 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 1])) << 8;
+    out += kDigits[(v >> 18) & 63];
+    out += kDigits[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? kDigits[(v >> 6) & 63] : '=';
+    out += '=';
+  }
+  return out;
+}
+
+template <typename T>
+std::string rawBytes(const std::vector<T>& values) {
+  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+// Builds a glTF document whose single buffer is embedded as a data URI. Each add* call
+// appends a bufferView (4-byte aligned) and an accessor over it and returns the accessor.
+class GltfBuilder {
+ public:
+  int addAccessor(const std::string& bytes, int component_type, size_t count,
+                  const std::string& type, int stride = 0, size_t offset = 0) {
+    const size_t view_offset = bin_.size();
+    bin_ += bytes;
+    bin_.resize((bin_.size() + 3) / 4 * 4, '\0');
+    views_.push_back("{\"buffer\":0,\"byteOffset\":" + std::to_string(view_offset) +
+                     ",\"byteLength\":" + std::to_string(bytes.size()) +
+                     (stride ? ",\"byteStride\":" + std::to_string(stride) : "") + "}");
+    accessors_.push_back("{\"bufferView\":" + std::to_string(views_.size() - 1) +
+                         ",\"byteOffset\":" + std::to_string(offset) +
+                         ",\"componentType\":" + std::to_string(component_type) +
+                         ",\"count\":" + std::to_string(count) + ",\"type\":\"" + type + "\"}");
+    return int(accessors_.size() - 1);
+  }
+  int vec3(const std::vector<float>& xyz) {
+    return addAccessor(rawBytes(xyz), kFloat, xyz.size() / 3, "VEC3");
+  }
+  int indicesU8(const std::vector<uint8_t>& i) {
+    return addAccessor(rawBytes(i), kUByte, i.size(), "SCALAR");
+  }
+  int indicesU16(const std::vector<uint16_t>& i) {
+    return addAccessor(rawBytes(i), kUShort, i.size(), "SCALAR");
+  }
+  int indicesU32(const std::vector<uint32_t>& i) {
+    return addAccessor(rawBytes(i), kUInt, i.size(), "SCALAR");
+  }
+
+  // `rest`: the remaining top-level members ("nodes", "meshes", ...) without braces.
+  std::string json(const std::string& rest) const {
+    std::string doc = "{\"asset\":{\"version\":\"2.0\"}";
+    if (!bin_.empty())
+      doc += ",\"buffers\":[{\"byteLength\":" + std::to_string(bin_.size()) +
+             ",\"uri\":\"data:application/octet-stream;base64," + base64(bin_) + "\"}]" +
+             ",\"bufferViews\":[" + join(views_) + "],\"accessors\":[" + join(accessors_) + "]";
+    return doc + (rest.empty() ? "" : "," + rest) + "}";
+  }
+  const std::string& bin() const { return bin_; }
+  std::string viewsAndAccessors() const {
+    return "\"bufferViews\":[" + join(views_) + "],\"accessors\":[" + join(accessors_) + "]";
+  }
+
+ private:
+  static std::string join(const std::vector<std::string>& items) {
+    std::string out;
+    for (const auto& s : items) out += (out.empty() ? "" : ",") + s;
+    return out;
+  }
+  std::string bin_;
+  std::vector<std::string> views_, accessors_;
+};
+
+std::string primitive(int position, int indices = -1, int material = -1, int mode = 4,
+                      int normal = -1) {
+  std::string attributes = "\"POSITION\":" + std::to_string(position);
+  if (normal >= 0) attributes += ",\"NORMAL\":" + std::to_string(normal);
+  std::string p = "{\"attributes\":{" + attributes + "},\"mode\":" + std::to_string(mode);
+  if (indices >= 0) p += ",\"indices\":" + std::to_string(indices);
+  if (material >= 0) p += ",\"material\":" + std::to_string(material);
+  return p + "}";
+}
+
+// One mesh of the given primitives on one root node.
+std::string singleMesh(const std::string& primitives, const std::string& extra = "") {
+  return "\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+         "\"meshes\":[{\"primitives\":[" + primitives + "]}]" +
+         (extra.empty() ? "" : "," + extra);
+}
+
+Scene loadJson(const std::string& json, const GltfLoadOptions& options = {}) {
+  return loadGltfFromMemory(reinterpret_cast<const unsigned char*>(json.data()), json.size(), "",
+                            "test.gltf", options);
+}
+
+// The SceneError message of `f`, or "<no error>".
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "<no error>";
+}
+
+#define EXPECT_SCENE_ERROR(statement, substring)                                  \
+  do {                                                                             \
+    const std::string message_ = errorOf([&] { statement; });                      \
+    EXPECT_NE(message_.find(substring), std::string::npos) << message_;            \
+    EXPECT_EQ(message_.find('\n'), std::string::npos) << "not one line: " << message_; \
+  } while (0)
+
+void expectNear(const glm::vec3& actual, const glm::vec3& expected, float tol = kTol) {
+  EXPECT_NEAR(actual.x, expected.x, tol);
+  EXPECT_NEAR(actual.y, expected.y, tol);
+  EXPECT_NEAR(actual.z, expected.z, tol);
+}
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void writeFile(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+// A GLB container: header, JSON chunk (space-padded), BIN chunk (zero-padded).
+std::string makeGlb(std::string json, std::string bin) {
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  bin.resize((bin.size() + 3) / 4 * 4, '\0');
+  auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  const uint32_t total = uint32_t(12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size()));
+  std::string glb = "glTF" + u32(2) + u32(total) + u32(uint32_t(json.size())) + "JSON" + json;
+  if (!bin.empty()) glb += u32(uint32_t(bin.size())) + std::string("BIN\0", 4) + bin;
+  return glb;
+}
+
+const std::vector<float> kQuad = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+const std::vector<glm::vec3> kQuadTriangles = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0},
+                                               {0, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+
+void expectQuad(const Scene& scene) {
+  ASSERT_EQ(scene.triangleCount(), 2u);
+  for (size_t i = 0; i < 6; ++i) expectNear(scene.positions[i], kQuadTriangles[i]);
+  EXPECT_TRUE(scene.normals.empty());
+  EXPECT_EQ(scene.material_of, (std::vector<int>{0, 0}));
+  ASSERT_EQ(scene.materials.size(), 1u);
+  EXPECT_EQ(scene.materials[0].name, "default");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Geometry
+
+TEST(GltfLoader, ReadsUint8Indices) {
+  GltfBuilder b;
+  int pos = b.vec3(kQuad);
+  int idx = b.indicesU8({0, 1, 2, 0, 2, 3});
+  expectQuad(loadJson(b.json(singleMesh(primitive(pos, idx)))));
+}
+
+TEST(GltfLoader, ReadsUint16Indices) {
+  GltfBuilder b;
+  int pos = b.vec3(kQuad);
+  int idx = b.indicesU16({0, 1, 2, 0, 2, 3});
+  expectQuad(loadJson(b.json(singleMesh(primitive(pos, idx)))));
+}
+
+TEST(GltfLoader, ReadsUint32Indices) {
+  GltfBuilder b;
+  int pos = b.vec3(kQuad);
+  int idx = b.indicesU32({0, 1, 2, 0, 2, 3});
+  expectQuad(loadJson(b.json(singleMesh(primitive(pos, idx)))));
+}
+
+TEST(GltfLoader, ReadsNonIndexedTriangles) {
+  GltfBuilder b;
+  std::vector<float> soup;
+  for (const glm::vec3& v : kQuadTriangles) soup.insert(soup.end(), {v.x, v.y, v.z});
+  int pos = b.vec3(soup);
+  expectQuad(loadJson(b.json(singleMesh(primitive(pos)))));
+}
+
+TEST(GltfLoader, ReadsInterleavedPositionsAndNormalsWithStride) {
+  GltfBuilder b;
+  // Per vertex: position xyz, normal xyz (24-byte stride); normals deliberately not unit.
+  std::vector<float> interleaved = {0, 0, 0, 0, 0, 2, 1, 0, 0, 0, 0, 3, 0, 1, 0, 0, 0, 4};
+  int pos = b.addAccessor(rawBytes(interleaved), kFloat, 3, "VEC3", 24, 0);
+  // The normal accessor shares the bytes through its own view at byteOffset 12.
+  int nrm = b.addAccessor(rawBytes(interleaved), kFloat, 3, "VEC3", 24, 12);
+  Scene s = loadJson(b.json(singleMesh(primitive(pos, -1, -1, 4, nrm))));
+  ASSERT_EQ(s.triangleCount(), 1u);
+  expectNear(s.positions[1], {1, 0, 0});
+  expectNear(s.positions[2], {0, 1, 0});
+  ASSERT_EQ(s.normals.size(), 3u);
+  for (const auto& n : s.normals) expectNear(n, {0, 0, 1});
+}
+
+TEST(GltfLoader, AppliesTrsParentTimesMatrixChild) {
+  GltfBuilder b;
+  int pos = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  // Parent: T(1,2,3) * R(90 deg about +Y) * S(2); child: matrix translating by (1,0,0).
+  const std::string rest =
+      "\"scenes\":[{\"nodes\":[0]}],\"nodes\":["
+      "{\"translation\":[1,2,3],\"rotation\":[0,0.70710678,0,0.70710678],\"scale\":[2,2,2],"
+      "\"children\":[1]},"
+      "{\"mesh\":0,\"matrix\":[1,0,0,0, 0,1,0,0, 0,0,1,0, 1,0,0,1]}],"
+      "\"meshes\":[{\"primitives\":[" + primitive(pos) + "]}]";
+  Scene s = loadJson(b.json(rest));
+  ASSERT_EQ(s.triangleCount(), 1u);
+  // v -> child (+1 x) -> scale 2 -> rotate x->-z, y->y -> translate (1,2,3).
+  expectNear(s.positions[0], {1, 2, 1});   // (0,0,0) -> (1,0,0) -> (2,0,0) -> (0,0,-2)
+  expectNear(s.positions[1], {1, 2, -1});  // (1,0,0) -> (2,0,0) -> (4,0,0) -> (0,0,-4)
+  expectNear(s.positions[2], {1, 4, 1});   // (0,1,0) -> (1,1,0) -> (2,2,0) -> (0,2,-2)
+}
+
+TEST(GltfLoader, TransformsNormalsByInverseTranspose) {
+  GltfBuilder b;
+  int pos = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  // A normal at 45 degrees in x/y; a non-uniform scale (4 in x) must tilt it towards y.
+  int nrm = b.vec3({1, 1, 0, 1, 1, 0, 1, 1, 0});
+  const std::string rest =
+      "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0,\"scale\":[4,1,1]}],"
+      "\"meshes\":[{\"primitives\":[" + primitive(pos, -1, -1, 4, nrm) + "]}]";
+  Scene s = loadJson(b.json(rest));
+  ASSERT_EQ(s.normals.size(), 3u);
+  expectNear(s.normals[0], glm::normalize(glm::vec3(0.25f, 1, 0)));
+}
+
+TEST(GltfLoader, KeepsCounterClockwiseWindingUnderMirroringTransform) {
+  GltfBuilder b;
+  int pos = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});  // counter-clockwise seen from +Z
+  const std::string rest =
+      "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0,\"scale\":[-1,1,1]}],"
+      "\"meshes\":[{\"primitives\":[" + primitive(pos) + "]}]";
+  Scene s = loadJson(b.json(rest));
+  ASSERT_EQ(s.triangleCount(), 1u);
+  glm::vec3 n = glm::cross(s.positions[1] - s.positions[0], s.positions[2] - s.positions[0]);
+  EXPECT_GT(n.z, 0.0f);
+  expectNear(s.positions[0], {0, 0, 0});
+}
+
+TEST(GltfLoader, NumbersTrianglesByNodesDepthFirstThenPrimitives) {
+  GltfBuilder b;
+  int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  int tri_y = b.vec3({0, 10, 0, 1, 10, 0, 0, 11, 0});  // second primitive, offset in y
+  // File order of nodes differs from traversal order: scene [2, 0]; node 2 has child 1.
+  const std::string rest =
+      "\"scene\":0,\"scenes\":[{\"nodes\":[2,0]}],\"nodes\":["
+      "{\"name\":\"last\",\"mesh\":1,\"translation\":[0,0,4]},"
+      "{\"name\":\"child\",\"mesh\":1,\"translation\":[0,0,-1]},"
+      "{\"name\":\"first\",\"mesh\":0,\"translation\":[0,0,1],\"children\":[1]}],"
+      "\"meshes\":[{\"primitives\":[" + primitive(tri) + "," + primitive(tri_y) + "]},"
+      "{\"primitives\":[" + primitive(tri) + "]}]";
+  Scene s = loadJson(b.json(rest));
+  ASSERT_EQ(s.triangleCount(), 4u);
+  expectNear(s.positions[0], {0, 0, 1});   // node "first", primitive 0
+  expectNear(s.positions[3], {0, 10, 1});  // node "first", primitive 1
+  expectNear(s.positions[6], {0, 0, 0});   // its child: (0,0,1) + (0,0,-1)
+  expectNear(s.positions[9], {0, 0, 4});   // node "last"
+}
+
+TEST(GltfLoader, UsesAllRootNodesWhenThereIsNoScene) {
+  GltfBuilder b;
+  int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const std::string rest =
+      "\"nodes\":[{\"children\":[2]},{\"mesh\":0,\"translation\":[0,0,5]},"
+      "{\"mesh\":0,\"translation\":[0,0,7]}],\"meshes\":[{\"primitives\":[" + primitive(tri) +
+      "]}]";
+  Scene s = loadJson(b.json(rest));
+  ASSERT_EQ(s.triangleCount(), 2u);
+  EXPECT_FLOAT_EQ(s.positions[0].z, 7.0f);  // root 0's child first
+  EXPECT_FLOAT_EQ(s.positions[3].z, 5.0f);
+}
+
+TEST(GltfLoader, FillsMissingNormalsWithGeometricNormal) {
+  GltfBuilder b;
+  int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  int nrm = b.vec3({1, 0, 0, 1, 0, 0, 1, 0, 0});
+  Scene s = loadJson(b.json(singleMesh(primitive(tri, -1, -1, 4, nrm) + "," + primitive(tri))));
+  ASSERT_EQ(s.normals.size(), s.positions.size());
+  expectNear(s.normals[0], {1, 0, 0});
+  expectNear(s.normals[3], {0, 0, 1});
+  expectNear(s.normals[5], {0, 0, 1});
+}
+
+TEST(GltfLoader, SkipsNonTrianglePrimitivesAndCountsThem) {
+  GltfBuilder b;
+  int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  Scene s = loadJson(b.json(singleMesh(primitive(tri, -1, -1, 1) + "," + primitive(tri) + "," +
+                                       primitive(tri, -1, -1, 0))));
+  EXPECT_EQ(s.triangleCount(), 1u);
+  EXPECT_EQ(s.skipped_primitives, 2u);
+  ASSERT_FALSE(s.warnings.empty());
+  EXPECT_NE(s.warnings.back().find("2 primitive(s) skipped"), std::string::npos);
+}
+
+TEST(GltfLoader, DropsTrianglesWithNanVertexAndCountsThem) {
+  GltfBuilder b;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  int pos = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0, nan, 0, 0});
+  int idx = b.indicesU16({0, 1, 2, 0, 3, 2, 2, 1, 0});
+  Scene s = loadJson(b.json(singleMesh(primitive(pos, idx))));
+  EXPECT_EQ(s.triangleCount(), 2u);
+  EXPECT_EQ(s.dropped_degenerate, 1u);
+  EXPECT_EQ(s.material_of.size(), 2u);
+  expectNear(s.positions[3], {0, 1, 0});  // the third triangle moved up to second place
+  ASSERT_FALSE(s.warnings.empty());
+  EXPECT_NE(s.warnings.back().find("1 triangle(s) with NaN/Inf"), std::string::npos);
+}
+
+TEST(GltfLoader, DropsZeroAreaTrianglesWithACount) {
+  GltfBuilder b;
+  // Collinear, a repeated vertex, and one real triangle.
+  int pos = b.vec3({0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0});
+  Scene s = loadJson(b.json(singleMesh(primitive(pos))));
+  EXPECT_EQ(s.triangleCount(), 1u);
+  EXPECT_EQ(s.dropped_zero_area, 2u);
+  EXPECT_EQ(s.dropped_degenerate, 0u);
+  ASSERT_FALSE(s.warnings.empty());
+  EXPECT_NE(s.warnings.back().find("2 triangle(s) with zero area"), std::string::npos);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cameras and lights
+
+TEST(GltfLoader, ReadsPerspectiveCameraWithRigidWorldFrame) {
+  GltfBuilder b;
+  int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  // The camera sits under a scaled parent; its frame must come out orthonormal.
+  const std::string rest =
+      "\"scenes\":[{\"nodes\":[0,1]}],\"nodes\":[{\"mesh\":0},"
+      "{\"scale\":[3,3,3],\"children\":[2]},"
+      "{\"name\":\"cam_node\",\"camera\":0,\"translation\":[0,0,2],"
+      "\"rotation\":[0,0.70710678,0,0.70710678]}],"
+      "\"cameras\":[{\"name\":\"main\",\"type\":\"perspective\",\"perspective\":"
+      "{\"yfov\":0.5,\"aspectRatio\":1.5,\"znear\":0.1}}],"
+      "\"meshes\":[{\"primitives\":[" + primitive(tri) + "]}]";
+  Scene s = loadJson(b.json(rest));
+  ASSERT_TRUE(s.has_camera);
+  EXPECT_EQ(s.camera.name, "main");
+  EXPECT_FALSE(s.camera.orthographic);
+  EXPECT_FLOAT_EQ(s.camera.yfov, 0.5f);
+  EXPECT_FLOAT_EQ(s.camera.aspect, 1.5f);
+  expectNear(glm::vec3(s.camera.world[3]), {0, 0, 6});          // eye: 3 * (0,0,2)
+  expectNear(glm::vec3(s.camera.world[0]), {0, 0, -1});         // +90 deg about Y: x -> -z
+  expectNear(glm::vec3(s.camera.world[1]), {0, 1, 0});
+  expectNear(glm::vec3(s.camera.world[2]), {1, 0, 0});          // looks down -Z = world -X
+  EXPECT_FALSE(s.has_lights);
+}
+
+TEST(GltfLoader, ReadsOrthographicCameraWithoutAspect) {
+  GltfBuilder b;
+  int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const std::string rest =
+      "\"scenes\":[{\"nodes\":[0,1]}],\"nodes\":[{\"mesh\":0},{\"camera\":0}],"
+      "\"cameras\":[{\"type\":\"orthographic\",\"orthographic\":"
+      "{\"xmag\":2,\"ymag\":1.5,\"znear\":0,\"zfar\":10}}],"
+      "\"meshes\":[{\"primitives\":[" + primitive(tri) + "]}]";
+  Scene s = loadJson(b.json(rest));
+  ASSERT_TRUE(s.has_camera);
+  EXPECT_TRUE(s.camera.orthographic);
+  EXPECT_FLOAT_EQ(s.camera.xmag, 2.0f);
+  EXPECT_FLOAT_EQ(s.camera.ymag, 1.5f);
+  EXPECT_FLOAT_EQ(s.camera.aspect, 0.0f);
+}
+
+std::string twoCameraScene(GltfBuilder& b) {
+  int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  return b.json(
+      "\"scenes\":[{\"nodes\":[0,1,2]}],\"nodes\":[{\"mesh\":0},"
+      "{\"name\":\"front\",\"camera\":0,\"translation\":[0,0,1]},"
+      "{\"name\":\"side\",\"camera\":1,\"translation\":[5,0,0]}],"
+      "\"cameras\":[{\"name\":\"cam_a\",\"type\":\"perspective\","
+      "\"perspective\":{\"yfov\":0.7,\"znear\":0.1}},"
+      "{\"name\":\"cam_b\",\"type\":\"perspective\","
+      "\"perspective\":{\"yfov\":0.9,\"znear\":0.1}}],"
+      "\"meshes\":[{\"primitives\":[" + primitive(tri) + "]}]");
+}
+
+TEST(GltfLoader, PicksFirstCameraByDefaultAndNamedCameraOnRequest) {
+  GltfBuilder b;
+  const std::string json = twoCameraScene(b);
+  EXPECT_EQ(loadJson(json).camera.name, "cam_a");
+  Scene by_camera = loadJson(json, GltfLoadOptions{"cam_b"});
+  EXPECT_EQ(by_camera.camera.name, "cam_b");
+  EXPECT_FLOAT_EQ(by_camera.camera.world[3].x, 5.0f);
+  EXPECT_EQ(loadJson(json, GltfLoadOptions{"side"}).camera.name, "cam_b");  // by node name
+  EXPECT_SCENE_ERROR(loadJson(json, GltfLoadOptions{"top"}),
+                     "camera 'top' not found; available: 'cam_a' (node 'front'), 'cam_b' (node "
+                     "'side')");
+}
+
+TEST(GltfLoader, ReadsPunctualLightsWithWhiteDefaultColor) {
+  GltfBuilder b;
+  int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const std::string rest =
+      "\"extensionsUsed\":[\"KHR_lights_punctual\"],"
+      "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":["
+      "{\"type\":\"point\"},"
+      "{\"type\":\"spot\",\"color\":[1,0.5,0.25],\"intensity\":7,\"range\":20,"
+      "\"spot\":{\"innerConeAngle\":0.2,\"outerConeAngle\":0.4}},"
+      "{\"type\":\"directional\",\"intensity\":3}]}},"
+      "\"scenes\":[{\"nodes\":[0,1,2,3]}],\"nodes\":[{\"mesh\":0},"
+      "{\"translation\":[1,2,3],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}},"
+      // Spot rotated +90 deg about X: local -Z points to world +Y.
+      "{\"translation\":[0,-4,0],\"rotation\":[0.70710678,0,0,0.70710678],"
+      "\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}}},"
+      // Directional rotated +90 deg about Y: local -Z points to world -X.
+      "{\"rotation\":[0,0.70710678,0,0.70710678],"
+      "\"extensions\":{\"KHR_lights_punctual\":{\"light\":2}}}],"
+      "\"meshes\":[{\"primitives\":[" + primitive(tri) + "]}]";
+  Scene s = loadJson(b.json(rest));
+  ASSERT_TRUE(s.has_lights);
+  ASSERT_EQ(s.lights.size(), 3u);
+  const Light& point = s.lights[0];
+  EXPECT_EQ(point.type, LightType::Point);
+  expectNear(point.color, {1, 1, 1});
+  EXPECT_FLOAT_EQ(point.intensity, 1.0f);
+  expectNear(point.position, {1, 2, 3});
+  EXPECT_FLOAT_EQ(point.range, 0.0f);
+
+  const Light& spot = s.lights[1];
+  EXPECT_EQ(spot.type, LightType::Spot);
+  expectNear(spot.color, {1, 0.5f, 0.25f});
+  EXPECT_FLOAT_EQ(spot.intensity, 7.0f);
+  EXPECT_FLOAT_EQ(spot.range, 20.0f);
+  EXPECT_FLOAT_EQ(spot.inner_cone, 0.2f);
+  EXPECT_FLOAT_EQ(spot.outer_cone, 0.4f);
+  expectNear(spot.position, {0, -4, 0});
+  expectNear(spot.direction, {0, 1, 0});
+
+  const Light& sun = s.lights[2];
+  EXPECT_EQ(sun.type, LightType::Directional);
+  EXPECT_FLOAT_EQ(sun.intensity, 3.0f);
+  expectNear(sun.direction, {-1, 0, 0});
+}
+
+// ---------------------------------------------------------------------------------------------
+// Materials
+
+TEST(GltfLoader, MapsMaterialFactorsAndExtensions) {
+  GltfBuilder b;
+  int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const std::string materials =
+      "\"materials\":[{\"name\":\"glass\",\"doubleSided\":true,"
+      "\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.1,0.2,0.3,1],\"metallicFactor\":0.25,"
+      "\"roughnessFactor\":0.75},\"emissiveFactor\":[1,0.5,0],"
+      "\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":0.9},"
+      "\"KHR_materials_ior\":{\"ior\":1.33},"
+      "\"KHR_materials_volume\":{\"attenuationColor\":[0.5,0.6,0.7],\"attenuationDistance\":2},"
+      "\"KHR_materials_emissive_strength\":{\"emissiveStrength\":4}}},"
+      "{\"name\":\"plain\",\"extensions\":{\"KHR_materials_volume\":{\"thicknessFactor\":1}}}]";
+  Scene s = loadJson(b.json(singleMesh(
+      primitive(tri, -1, 1) + "," + primitive(tri) + "," + primitive(tri, -1, 0) + "," +
+          primitive(tri),
+      materials)));
+  ASSERT_EQ(s.materials.size(), 3u);  // two from the file, one default appended once
+  EXPECT_EQ(s.material_of, (std::vector<int>{1, 2, 0, 2}));
+
+  const Material& glass = s.materials[0];
+  EXPECT_EQ(glass.name, "glass");
+  expectNear(glass.base_color, {0.1f, 0.2f, 0.3f});
+  EXPECT_FLOAT_EQ(glass.metallic, 0.25f);
+  EXPECT_FLOAT_EQ(glass.roughness, 0.75f);
+  EXPECT_FLOAT_EQ(glass.transmission, 0.9f);
+  EXPECT_FLOAT_EQ(glass.ior, 1.33f);
+  expectNear(glass.attenuation_color, {0.5f, 0.6f, 0.7f});
+  EXPECT_FLOAT_EQ(glass.attenuation_distance, 2.0f);
+  expectNear(glass.emissive, {4, 2, 0});
+  EXPECT_TRUE(glass.double_sided);
+
+  const Material& plain = s.materials[1];  // glTF defaults
+  expectNear(plain.base_color, {1, 1, 1});
+  EXPECT_FLOAT_EQ(plain.metallic, 1.0f);
+  EXPECT_FLOAT_EQ(plain.roughness, 1.0f);
+  EXPECT_FLOAT_EQ(plain.transmission, 0.0f);
+  EXPECT_FLOAT_EQ(plain.ior, 1.5f);
+  EXPECT_FLOAT_EQ(plain.attenuation_distance, 0.0f);  // glTF +infinity: no absorption
+  expectNear(plain.emissive, {0, 0, 0});
+  EXPECT_FALSE(plain.double_sided);
+
+  EXPECT_EQ(s.materials[2].name, "default");
+}
+
+TEST(GltfLoader, WarnsOnceThatTexturesAreIgnored) {
+  GltfBuilder b;
+  int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const std::string extra =
+      "\"images\":[{\"uri\":\"data:image/png;base64,iVBORw0KGgo=\"}],"
+      "\"textures\":[{\"source\":0}],"
+      "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}},"
+      "{\"normalTexture\":{\"index\":0}}]";
+  Scene s = loadJson(b.json(singleMesh(primitive(tri, -1, 0) + "," + primitive(tri, -1, 1),
+                                       extra)));
+  EXPECT_EQ(std::count(s.warnings.begin(), s.warnings.end(), "textures are ignored"), 1);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Errors
+
+TEST(GltfLoader, RejectsIndexOutOfRange) {
+  GltfBuilder b;
+  int pos = b.vec3(kQuad);
+  int idx = b.indicesU16({0, 1, 2, 0, 2, 7});
+  EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos, idx)))),
+                     "test.gltf: accessor 1: index 7 out of range for 4 vertices");
+}
+
+TEST(GltfLoader, RejectsAccessorBeyondItsBuffer) {
+  GltfBuilder b;
+  // 4 vertices claimed over 3 vertices' worth of bytes.
+  int pos = b.addAccessor(rawBytes(std::vector<float>(9, 0.0f)), kFloat, 4, "VEC3");
+  EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos)))),
+                     "test.gltf: accessor 0: 4 elements at offset 0 with stride 12 exceed "
+                     "bufferView 0 of 36 bytes");
+}
+
+TEST(GltfLoader, RejectsStrideSmallerThanElement) {
+  GltfBuilder b;
+  int pos = b.addAccessor(rawBytes(std::vector<float>(9, 0.0f)), kFloat, 3, "VEC3", 8);
+  EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos)))), "byteStride 8");
+}
+
+TEST(GltfLoader, RejectsIndexCountNotMultipleOfThree) {
+  GltfBuilder b;
+  int pos = b.vec3(kQuad);
+  int idx = b.indicesU8({0, 1, 2, 3});
+  EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos, idx)))),
+                     "accessor 1: 4 indices is not a multiple of 3");
+}
+
+TEST(GltfLoader, RejectsNonFloatPositions) {
+  GltfBuilder b;
+  int pos = b.addAccessor(rawBytes(std::vector<uint16_t>(9, 0)), kUShort, 3, "VEC3");
+  EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos)))),
+                     "accessor 0: POSITION must be FLOAT VEC3, not UNSIGNED_SHORT VEC3");
+}
+
+TEST(GltfLoader, RejectsSparseAccessor) {
+  GltfBuilder b;
+  b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const std::string sparse =
+      "{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"sparse\":"
+      "{\"count\":1,\"indices\":{\"bufferView\":0,\"componentType\":5125},"
+      "\"values\":{\"bufferView\":0}}}";
+  std::string json = b.json(singleMesh(primitive(1)));
+  const size_t accessors_end = json.find(']', json.find("\"accessors\":["));
+  json.insert(accessors_end, "," + sparse);  // becomes accessor 1
+  EXPECT_SCENE_ERROR(loadJson(json), "accessor 1: sparse accessors are not supported");
+}
+
+TEST(GltfLoader, RejectsNodeCycle) {
+  GltfBuilder b;
+  int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const std::string rest =
+      "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0,\"children\":[1]},"
+      "{\"children\":[0]}],\"meshes\":[{\"primitives\":[" + primitive(tri) + "]}]";
+  EXPECT_SCENE_ERROR(loadJson(b.json(rest)), "node 0: the node hierarchy has a cycle");
+}
+
+TEST(GltfLoader, KeepsMessagesOnOneLineDespiteControlCharactersInNames) {
+  GltfBuilder b;
+  int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const std::string rest =
+      "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"name\":\"evil\\nname\\u001b\",\"mesh\":0,"
+      "\"children\":[0]}],\"meshes\":[{\"primitives\":[" + primitive(tri) + "]}]";
+  EXPECT_SCENE_ERROR(loadJson(b.json(rest)),
+                     "node 0 'evil; name?': the node hierarchy has a cycle");
+}
+
+TEST(GltfLoader, RejectsDanglingIndices) {
+  GltfBuilder b;
+  int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  EXPECT_SCENE_ERROR(
+      loadJson(b.json("\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":3}],\"meshes\":[]")),
+      "node 0: mesh 3 does not exist");
+  EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(tri, -1, 2)))),
+                     "mesh 0 primitive 0: material 2 does not exist");
+  EXPECT_SCENE_ERROR(loadJson(b.json("\"scenes\":[{\"nodes\":[4]}],\"nodes\":[]")),
+                     "node 4 does not exist");
+}
+
+TEST(GltfLoader, RejectsSceneWithoutTriangles) {
+  const std::string rest =
+      "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"camera\":0}],\"cameras\":[{\"type\":"
+      "\"perspective\",\"perspective\":{\"yfov\":1,\"znear\":0.1}}]";
+  EXPECT_SCENE_ERROR(loadJson(GltfBuilder().json(rest)), "test.gltf: the scene has no triangles");
+}
+
+TEST(GltfLoader, RejectsJsonSyntaxError) {
+  const std::string message = errorOf([] { loadJson("{\"asset\": {\"version\": \"2.0\"},"); });
+  EXPECT_EQ(message.rfind("test.gltf: malformed glTF: ", 0), 0u) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+TEST(GltfLoader, RejectsAbsurdJsonNesting) {
+  const std::string json = "{\"asset\":{\"version\":\"2.0\"},\"extras\":" +
+                           std::string(100000, '[') + std::string(100000, ']') + "}";
+  EXPECT_SCENE_ERROR(loadJson(json), "JSON nested deeper than");
+}
+
+TEST(GltfLoader, RejectsMissingFile) {
+  const std::string path = test::tempPath("does_not_exist.glb");
+  EXPECT_SCENE_ERROR(loadGltfFile(path), "cannot open scene '" + path + "': ");
+}
+
+TEST(GltfLoader, RejectsGlbWithWrongMagic) {
+  std::string glb = readFile(test::modelScene("bunny_res4.glb"));
+  ASSERT_GT(glb.size(), 20u);
+  glb[3] = 'X';
+  const std::string path = test::tempPath("wrong_magic.glb");
+  writeFile(path, glb);
+  EXPECT_SCENE_ERROR(loadGltfFile(path), path + ": not a binary glTF");
+}
+
+TEST(GltfLoader, RejectsTruncatedGlb) {
+  const std::string glb = readFile(test::modelScene("loader_test.glb"));
+  ASSERT_GT(glb.size(), 1000u);
+  for (size_t size : {size_t(10), size_t(100), glb.size() / 2, glb.size() - 4}) {
+    SCOPED_TRACE("truncated to " + std::to_string(size) + " bytes");
+    const std::string path = test::tempPath("truncated.glb");
+    writeFile(path, glb.substr(0, size));
+    EXPECT_SCENE_ERROR(loadGltfFile(path), path + ": malformed glTF");
+  }
+}
+
+TEST(GltfLoader, LoadsGlbFromMemoryByMagic) {
+  GltfBuilder b;
+  int pos = b.vec3(kQuad);
+  int idx = b.indicesU8({0, 1, 2, 0, 2, 3});
+  const std::string json = "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":" +
+                           std::to_string(b.bin().size()) + "}]," + b.viewsAndAccessors() + "," +
+                           singleMesh(primitive(pos, idx)) + "}";
+  const std::string glb = makeGlb(json, b.bin());
+  expectQuad(loadGltfFromMemory(reinterpret_cast<const unsigned char*>(glb.data()), glb.size(),
+                                "", "memory.glb"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// External files
+
+// A folder with scene.gltf whose buffer URI is `uri`, and a valid triangle buffer both inside
+// (inside.bin) and next to the folder (outside.bin).
+std::string sceneWithBufferUri(const std::string& name, const std::string& uri) {
+  namespace fs = std::filesystem;
+  const fs::path root = test::tempPath(name);
+  fs::create_directories(root / "scene");
+  const std::string bin = rawBytes(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});
+  writeFile((root / "outside.bin").string(), bin);
+  writeFile((root / "scene" / "inside.bin").string(), bin);
+  const std::string json =
+      "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":36,\"uri\":\"" + uri +
+      "\"}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],\"accessors\":[{\"bufferView\":0,"
+      "\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"}]," + singleMesh(primitive(0)) + "}";
+  const std::string path = (root / "scene" / "scene.gltf").string();
+  writeFile(path, json);
+  return path;
+}
+
+TEST(GltfLoader, ReadsExternalBufferInsideSceneFolder) {
+  EXPECT_EQ(loadGltfFile(sceneWithBufferUri("ext_ok", "inside.bin")).triangleCount(), 1u);
+}
+
+TEST(GltfLoader, RejectsExternalUrisLeavingSceneFolder) {
+  EXPECT_SCENE_ERROR(loadGltfFile(sceneWithBufferUri("ext_dotdot", "../outside.bin")),
+                     "external URI '../outside.bin' contains '..'");
+  EXPECT_SCENE_ERROR(loadGltfFile(sceneWithBufferUri("ext_encoded", "%2E%2E/outside.bin")),
+                     "external URI '../outside.bin' contains '..'");
+  EXPECT_SCENE_ERROR(loadGltfFile(sceneWithBufferUri("ext_abs", "/etc/passwd")),
+                     "external URI '/etc/passwd' is an absolute path");
+}
+
+TEST(GltfLoader, RejectsSymlinkLeavingSceneFolder) {
+  namespace fs = std::filesystem;
+  const std::string path = sceneWithBufferUri("ext_link", "link.bin");
+  const fs::path dir = fs::path(path).parent_path();
+  fs::create_symlink(dir.parent_path() / "outside.bin", dir / "link.bin");
+  EXPECT_SCENE_ERROR(loadGltfFile(path),
+                     "external URI 'link.bin' leads outside the scene folder");
+}
+
+TEST(GltfLoader, RefusesExternalFilesWithoutBaseFolder) {
+  const std::string json = readFile(sceneWithBufferUri("ext_nobase", "inside.bin"));
+  EXPECT_SCENE_ERROR(loadJson(json), "external URI 'inside.bin' cannot be read");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shared scenes
+
+TEST(GltfLoader, LoadsSharedLoaderTestScene) {
+  Scene s = loadGltfFile(test::modelScene("loader_test.glb"));
+  EXPECT_EQ(s.triangleCount(), 974u);
+  EXPECT_EQ(s.material_of.size(), 974u);
+  EXPECT_TRUE(s.normals.empty());
+  EXPECT_EQ(s.skipped_primitives, 0u);
+  EXPECT_EQ(s.dropped_degenerate, 0u);
+  ASSERT_TRUE(s.has_camera);
+  EXPECT_EQ(s.camera.name, "camera");
+  EXPECT_NEAR(s.camera.yfov, 0.6981317f, 1e-6f);
+  expectNear(glm::vec3(s.camera.world[3]), {1.881f, 0.6f, 5.168f}, 1e-3f);
+  ASSERT_EQ(s.lights.size(), 1u);
+  expectNear(s.lights[0].position, {1, 4, 5});
+  EXPECT_FLOAT_EQ(s.lights[0].intensity, 40.0f);
+  // Order: bunny (948, material "default"), cube_a (12), cube_b (12), triangle (2, "red").
+  EXPECT_EQ(s.materials[size_t(s.material_of[0])].name, "default");
+  EXPECT_EQ(s.materials[size_t(s.material_of[948])].name, "red");   // cube primitive 0
+  EXPECT_EQ(s.materials[size_t(s.material_of[973])].name, "red");   // the triangle
+}
+
+TEST(GltfLoader, LoadsSharedBunnyAndOrientationTest) {
+  Scene bunny = loadGltfFile(test::modelScene("bunny_res4.glb"));
+  EXPECT_EQ(bunny.triangleCount(), 948u);
+  Scene orientation = loadGltfFile(test::modelScene("OrientationTest.glb"));
+  EXPECT_EQ(orientation.triangleCount(), 524u);
+  EXPECT_EQ(orientation.normals.size(), orientation.positions.size());
+  // SOURCES.md: bounds (-5.331, ...) .. (5.331, ...).
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const auto& p : orientation.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  expectNear(lo, glm::vec3(-5.331f), 1e-3f);
+  expectNear(hi, glm::vec3(5.331f), 1e-3f);
+}
+
+}  // namespace
+}  // namespace gridrt

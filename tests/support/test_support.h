@@ -1,0 +1,32 @@
+// Helpers the tests have in common: paths of the source tree, the model scenes and the binary.
+#pragma once
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gridrt_types.h"
+
+namespace gridrt::test {
+
+std::string sourcePath(const std::string& relative);  // <repo>/relative
+std::string modelScene(const std::string& name);      // <repo>/scenes/models/name
+std::string gridrtBinary();                           // build/gridrt
+std::string tempPath(const std::string& name);        // a fresh path under a per-test temp dir
+bool fileExists(const std::string& path);
+
+// An empty directory of its own (under the per-process temp dir), so a test's listings
+// see only that test's files; and the sorted names in a directory.
+std::string freshDir(const std::string& name);
+std::vector<std::string> listDir(const std::string& dir);
+
+// Rays where `got` differs from `want`: another primitive, or another t bit for bit.
+// Reports the first difference as a test failure naming `label`.
+size_t hitMismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& got,
+                     const std::string& label);
+
+// The scalar ray/triangle test of a prepared triangle's layout (prepareTriangle), on one ray.
+int intersectScalar(const GrTriangle& tri, const glm::vec3& o, const glm::vec3& d, float* t,
+                    float* u, float* v);
+
+}  // namespace gridrt::test
