@@ -17,13 +17,22 @@ __kernel void brute_intersect(__global const GrRay* rays, int ray_count,
   for (int k = 0; k < LANES; ++k) {
     int r = min(first + k, ray_count - 1); /* pad with the last ray */
     GrRay ray = rays[r];
-    a_ox[k] = ray.ox; a_oy[k] = ray.oy; a_oz[k] = ray.oz;
-    a_dx[k] = ray.dx; a_dy[k] = ray.dy; a_dz[k] = ray.dz;
-    a_tmin[k] = ray.tmin; a_tmax[k] = ray.tmax;
+    a_ox[k] = ray.ox;
+    a_oy[k] = ray.oy;
+    a_oz[k] = ray.oz;
+    a_dx[k] = ray.dx;
+    a_dy[k] = ray.dy;
+    a_dz[k] = ray.dz;
+    a_tmin[k] = ray.tmin;
+    a_tmax[k] = ray.tmax;
   }
   GrRays16 r16;
-  r16.ox = vload16(0, a_ox); r16.oy = vload16(0, a_oy); r16.oz = vload16(0, a_oz);
-  r16.dx = vload16(0, a_dx); r16.dy = vload16(0, a_dy); r16.dz = vload16(0, a_dz);
+  r16.ox = vload16(0, a_ox);
+  r16.oy = vload16(0, a_oy);
+  r16.oz = vload16(0, a_oz);
+  r16.dx = vload16(0, a_dx);
+  r16.dy = vload16(0, a_dy);
+  r16.dz = vload16(0, a_dz);
   gr_prepare_rays16(&r16);
   float16 tmin = vload16(0, a_tmin);
   float16 best_t = vload16(0, a_tmax);
@@ -32,8 +41,8 @@ __kernel void brute_intersect(__global const GrRay* rays, int ray_count,
   for (int i = 0; i < tri_count; ++i) {
     GrTriangle tri = tris[i];
     float16 t, u, v;
-    int16 hit = gr_intersect16(&r16, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z,
-                                  tri.e2x, tri.e2y, tri.e2z, &t, &u, &v);
+    int16 hit = gr_intersect16(&r16, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z, tri.e2x,
+                               tri.e2y, tri.e2z, &t, &u, &v);
     hit &= (t > tmin) & (t < best_t);
     best_t = select(best_t, t, hit);
     best_u = select(best_u, u, hit);
@@ -43,11 +52,16 @@ __kernel void brute_intersect(__global const GrRay* rays, int ray_count,
   }
   float o_t[LANES], o_u[LANES], o_v[LANES];
   int o_p[LANES];
-  vstore16(best_t, 0, o_t); vstore16(best_u, 0, o_u); vstore16(best_v, 0, o_v);
+  vstore16(best_t, 0, o_t);
+  vstore16(best_u, 0, o_u);
+  vstore16(best_v, 0, o_v);
   vstore16(best_prim, 0, o_p);
   for (int k = 0; k < LANES && first + k < ray_count; ++k) {
     GrHit h;
-    h.t = o_t[k]; h.prim = o_p[k]; h.u = o_u[k]; h.v = o_v[k];
+    h.t = o_t[k];
+    h.prim = o_p[k];
+    h.u = o_u[k];
+    h.v = o_v[k];
     hits[first + k] = h;
   }
 }

@@ -1,7 +1,7 @@
-/* GridRT processing elements over ray bundles (host/gridrt/bundles/ray_bundles.h): one work-group runs
- * one task of one PE (a non-empty voxel). The task's rays are consecutive in bundle order
- * and stored as planes, so a work-item loads 16 of them with one vload16 per plane and
- * tests them in float16 lanes against the voxel's triangles.
+/* GridRT processing elements over ray bundles (host/gridrt/bundles/ray_bundles.h): one work-group
+ * runs one task of one PE (a non-empty voxel). The task's rays are consecutive in bundle order and
+ * stored as planes, so a work-item loads 16 of them with one vload16 per plane and tests them in
+ * float16 lanes against the voxel's triangles.
  *
  * The work-item decides itself which lanes pierce the voxel: the slab test with the
  * 3D-DDA's plane distances ((min + k * cell - o) * (1/d)), so two voxels that share a
@@ -37,12 +37,11 @@ inline void gr_slab16(float16 o, float16 d, float16 inv, float lo, float hi, flo
  * on the common origin into one scalar operation per triangle: the same operations on the
  * same values, so every lane rounds exactly as before. */
 inline __attribute__((always_inline)) void gr_bundle_packet(
-    const GrRays16* r, float16 tmin, float16 tmax, int16 in_task, int first, int out,
-    float lox, float hix, float loy, float hiy, float loz, float hiz,
-    __global const GrTriangle* pe_tris, int begin, int end, __global float* results,
-    int lanes, __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
-    __global const float* cull_planes, int cull_stride, int seg_cull,
-    __global const float* seg_planes, int seg_stride) {
+    const GrRays16* r, float16 tmin, float16 tmax, int16 in_task, int first, int out, float lox,
+    float hix, float loy, float hiy, float loz, float hiz, __global const GrTriangle* pe_tris,
+    int begin, int end, __global float* results, int lanes, __global int* first_hit_key,
+    int any_hit, int interrupt, GrCullFrame cull, __global const float* cull_planes,
+    int cull_stride, int seg_cull, __global const float* seg_planes, int seg_stride) {
   /* One result buffer (one map on the host; gridrt_types.h): t, prim, u, v planes of
    * `lanes` each, then one GrPacketMasks per packet. */
   __global GrPacketMasks* masks =
@@ -69,8 +68,9 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
   m.skipped = 0;
   m.tests = 0;
   if (any(active)) {
-    /* The active lanes' box on the culling frame's tangent plane (host/gridrt/culling/packet_culling.h);
-     * the host enables culling only when every ray has d.f > 0. */
+    /* The active lanes' box on the culling frame's tangent plane
+     * (host/gridrt/culling/packet_culling.h); the host enables culling only when every ray has d.f
+     * > 0. */
     float4 packet_box = (float4)0.0f;
     if (cull.enabled != 0.0f) {
       float16 w = r->dx * cull.fx + r->dy * cull.fy + r->dz * cull.fz;
@@ -86,33 +86,34 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
     if (seg_cull) seg = gr_segment_packet16(r, fmax(t_enter, tmin), fmin(t_exit, tmax), active);
     float16 best_t, best_u, best_v;
     int16 best_prim;
-    gr_pe_closest16(r, pe_tris, begin, end, tmin, tmax, t_enter, t_exit, active, any_hit,
-                    &best_t, &best_u, &best_v, &best_prim, cull_planes, cull_stride,
-                    packet_box, cull.enabled != 0.0f, &seg, seg_planes, seg_stride, &m.tests);
+    gr_pe_closest16(r, pe_tris, begin, end, tmin, tmax, t_enter, t_exit, active, any_hit, &best_t,
+                    &best_u, &best_v, &best_prim, cull_planes, cull_stride, packet_box,
+                    cull.enabled != 0.0f, &seg, seg_planes, seg_stride, &m.tests);
     m.hit = gr_store_packet_hits(best_t, best_prim, best_u, best_v, results, (size_t)lanes, out,
-                                 interrupt, first_hit_key, (int16)first + GR_LANE_INDEX16,
-                                 t_enter);
+                                 interrupt, first_hit_key, (int16)first + GR_LANE_INDEX16, t_enter);
   }
   m.pierced = gr_lane_bits16(pierced);
   m.skipped = gr_lane_bits16(skipped);
   masks[out / LANES] = m;
 }
 
-__kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1)))
-void gridrt_bundles(__global const GrBundleTask* tasks, __global const float* planes, int stride,
-                   int common_origin, GrRay common,
-                   GrGridInfo grid, __global const int* voxel_of_pe,
-                   __global const int* pe_tri_begin, __global const GrTriangle* pe_tris,
-                   __global float* results, int lanes,
-                   __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
-                   __global const float* cull_planes, int cull_stride,
-                   __global const float* seg_planes, int seg_stride) {
+__kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void gridrt_bundles(
+    __global const GrBundleTask* tasks, __global const float* planes, int stride, int common_origin,
+    GrRay common, GrGridInfo grid, __global const int* voxel_of_pe,
+    __global const int* pe_tri_begin, __global const GrTriangle* pe_tris, __global float* results,
+    int lanes, __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
+    __global const float* cull_planes, int cull_stride, __global const float* seg_planes,
+    int seg_stride) {
   const GrBundleTask task = tasks[get_group_id(0)];
   const int voxel = voxel_of_pe[task.pe];
-  const int vx = voxel % grid.nx, vy = (voxel / grid.nx) % grid.ny, vz = voxel / (grid.nx * grid.ny);
-  const float lox = grid.minx + (float)vx * grid.cellx, hix = grid.minx + (float)(vx + 1) * grid.cellx;
-  const float loy = grid.miny + (float)vy * grid.celly, hiy = grid.miny + (float)(vy + 1) * grid.celly;
-  const float loz = grid.minz + (float)vz * grid.cellz, hiz = grid.minz + (float)(vz + 1) * grid.cellz;
+  const int vx = voxel % grid.nx, vy = (voxel / grid.nx) % grid.ny,
+            vz = voxel / (grid.nx * grid.ny);
+  const float lox = grid.minx + (float)vx * grid.cellx,
+              hix = grid.minx + (float)(vx + 1) * grid.cellx;
+  const float loy = grid.miny + (float)vy * grid.celly,
+              hiy = grid.miny + (float)(vy + 1) * grid.celly;
+  const float loz = grid.minz + (float)vz * grid.cellz,
+              hiz = grid.minz + (float)(vz + 1) * grid.cellz;
   const int begin = pe_tri_begin[task.pe], end = pe_tri_begin[task.pe + 1];
   const int packets = (task.ray_count + LANES - 1) / LANES;
   /* Packet culling needs a common origin; rays with their own origins use segment
@@ -136,20 +137,20 @@ void gridrt_bundles(__global const GrBundleTask* tasks, __global const float* pl
       r.oy = common.oy;
       r.oz = common.oz;
       gr_prepare_rays16(&r);
-      gr_bundle_packet(&r, (float16)common.tmin, (float16)common.tmax, in_task, first, out,
-                       lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results, lanes,
-                       first_hit_key, any_hit, interrupt, cull, cull_planes, cull_stride, 0,
-                       seg_planes, seg_stride);
+      gr_bundle_packet(&r, (float16)common.tmin, (float16)common.tmax, in_task, first, out, lox,
+                       hix, loy, hiy, loz, hiz, pe_tris, begin, end, results, lanes, first_hit_key,
+                       any_hit, interrupt, cull, cull_planes, cull_stride, 0, seg_planes,
+                       seg_stride);
     } else {
       r.ox = vload16(0, planes + GR_PLANE_OX * stride + first);
       r.oy = vload16(0, planes + GR_PLANE_OY * stride + first);
       r.oz = vload16(0, planes + GR_PLANE_OZ * stride + first);
       gr_prepare_rays16(&r);
       gr_bundle_packet(&r, vload16(0, planes + GR_PLANE_TMIN * stride + first),
-                       vload16(0, planes + GR_PLANE_TMAX * stride + first), in_task, first,
-                       out, lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results,
-                       lanes, first_hit_key, any_hit, interrupt, no_cull, cull_planes,
-                       cull_stride, 1, seg_planes, seg_stride);
+                       vload16(0, planes + GR_PLANE_TMAX * stride + first), in_task, first, out,
+                       lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results, lanes,
+                       first_hit_key, any_hit, interrupt, no_cull, cull_planes, cull_stride, 1,
+                       seg_planes, seg_stride);
     }
   }
 }

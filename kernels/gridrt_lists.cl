@@ -25,11 +25,11 @@ inline float16 gr_pair_plane16(__global const float* packet, int q) {
   return vload16(0, packet + gr_pair_value(q, 0));
 }
 
-__kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1)))
-void gridrt_lists(__global const GrPeTask* tasks, __global const float* pairs,
-               __global const int* pe_tri_begin, __global const GrTriangle* pe_tris,
-               __global float* results, int lanes_total, __global int* first_hit_key,
-               int any_hit, int interrupt, __global const float* seg_planes, int seg_stride) {
+__kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void gridrt_lists(
+    __global const GrPeTask* tasks, __global const float* pairs, __global const int* pe_tri_begin,
+    __global const GrTriangle* pe_tris, __global float* results, int lanes_total,
+    __global int* first_hit_key, int any_hit, int interrupt, __global const float* seg_planes,
+    int seg_stride) {
   GrPeTask task = tasks[get_group_id(0)];
   int first = get_local_id(0) * LANES;
   if (first >= task.pair_count) return;
@@ -75,10 +75,10 @@ void gridrt_lists(__global const GrPeTask* tasks, __global const float* pairs,
         gr_segment_packet16(&r16, fmax(t_enter, tmin), fmin(t_exit, tmax), active);
     float16 best_t, best_u, best_v;
     int16 best_prim;
-    gr_pe_closest16(&r16, pe_tris, pe_tri_begin[task.pe], pe_tri_begin[task.pe + 1], tmin,
-                    tmax, t_enter, t_exit, active, any_hit, &best_t, &best_u, &best_v,
-                    &best_prim, (__global const float*)0, 0, (float4)0.0f, 0, &seg,
-                    seg_planes, seg_stride, &m.tests);
+    gr_pe_closest16(&r16, pe_tris, pe_tri_begin[task.pe], pe_tri_begin[task.pe + 1], tmin, tmax,
+                    t_enter, t_exit, active, any_hit, &best_t, &best_u, &best_v, &best_prim,
+                    (__global const float*)0, 0, (float4)0.0f, 0, &seg, seg_planes, seg_stride,
+                    &m.tests);
     m.hit = gr_store_packet_hits(best_t, best_prim, best_u, best_v, results, all_lanes, out,
                                  interrupt, first_hit_key, ray16, t_enter);
   }

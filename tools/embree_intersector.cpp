@@ -42,9 +42,18 @@ GrHit occludedOf(const GrRay& r) { return GrHit{r.tmax, 0, 0.0f, 0.0f}; }
 // One ray as Embree's single-ray query takes it.
 RTCRay embreeRay(const GrRay& r) {
   RTCRay ray;
-  ray.org_x = r.ox; ray.org_y = r.oy; ray.org_z = r.oz; ray.tnear = r.tmin;
-  ray.dir_x = r.dx; ray.dir_y = r.dy; ray.dir_z = r.dz; ray.time = 0.0f;
-  ray.tfar = r.tmax; ray.mask = ~0u; ray.id = 0; ray.flags = 0;
+  ray.org_x = r.ox;
+  ray.org_y = r.oy;
+  ray.org_z = r.oz;
+  ray.tnear = r.tmin;
+  ray.dir_x = r.dx;
+  ray.dir_y = r.dy;
+  ray.dir_z = r.dz;
+  ray.time = 0.0f;
+  ray.tfar = r.tmax;
+  ray.mask = ~0u;
+  ray.id = 0;
+  ray.flags = 0;
   return ray;
 }
 
@@ -79,8 +88,10 @@ void traceSingle(RTCScene scene, const std::vector<GrRay>& rays, HitMode mode, G
 }
 
 // The packet types and calls of one width.
-template <int N> struct Packet;
-template <> struct Packet<8> {
+template <int N>
+struct Packet;
+template <>
+struct Packet<8> {
   using RayHit = RTCRayHit8;
   static void intersect(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* rh) {
     rtcIntersect8(valid, s, c, rh);
@@ -89,7 +100,8 @@ template <> struct Packet<8> {
     rtcOccluded8(valid, s, c, &rh->ray);
   }
 };
-template <> struct Packet<16> {
+template <>
+struct Packet<16> {
   using RayHit = RTCRayHit16;
   static void intersect(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* rh) {
     rtcIntersect16(valid, s, c, rh);
@@ -108,15 +120,24 @@ void tracePacket(RTCScene scene, const GrRay* rays, const long long* index, HitM
   for (int k = 0; k < N; ++k) {
     valid[k] = index[k] >= 0 ? -1 : 0;
     const GrRay& r = rays[valid[k] ? index[k] : index[0]];
-    rh.ray.org_x[k] = r.ox; rh.ray.org_y[k] = r.oy; rh.ray.org_z[k] = r.oz;
-    rh.ray.dir_x[k] = r.dx; rh.ray.dir_y[k] = r.dy; rh.ray.dir_z[k] = r.dz;
-    rh.ray.tnear[k] = r.tmin; rh.ray.tfar[k] = r.tmax; rh.ray.time[k] = 0.0f;
-    rh.ray.mask[k] = ~0u; rh.ray.id[k] = 0; rh.ray.flags[k] = 0;
+    rh.ray.org_x[k] = r.ox;
+    rh.ray.org_y[k] = r.oy;
+    rh.ray.org_z[k] = r.oz;
+    rh.ray.dir_x[k] = r.dx;
+    rh.ray.dir_y[k] = r.dy;
+    rh.ray.dir_z[k] = r.dz;
+    rh.ray.tnear[k] = r.tmin;
+    rh.ray.tfar[k] = r.tmax;
+    rh.ray.time[k] = 0.0f;
+    rh.ray.mask[k] = ~0u;
+    rh.ray.id[k] = 0;
+    rh.ray.flags[k] = 0;
     rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
   }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  context.flags =
+      coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   if (mode == HitMode::AnyHit)
     Packet<N>::occluded(valid, scene, &context, &rh);
   else

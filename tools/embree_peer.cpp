@@ -23,7 +23,6 @@
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -59,7 +58,8 @@ PeerOptions parse(int argc, char** argv) {
   PeerOptions o;
   CLI::App app{"Embree 3 on gridrt's camera rays or in its Whitted renderer (tools/bench.py)",
                "embree_peer"};
-  app.add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb; --whitted: default scene without)");
+  app.add_option("scene", o.scene,
+                 "glTF 2.0 scene (.gltf or .glb; --whitted: default scene without)");
   app.add_option("--width", o.width, "image width")->check(CLI::Range(1, 65536));
   app.add_option("--height", o.height, "image height")->check(CLI::Range(1, 65536));
   app.add_option("--threads", o.threads, "OpenMP and Embree threads")->check(CLI::Range(1, 1024));
@@ -86,7 +86,8 @@ PeerOptions parse(int argc, char** argv) {
   }
   const bool camera_only = !o.primid_path.empty() || !o.depth_path.empty();
   const char* problem = !o.whitted && o.scene.empty() ? "a scene is needed without --whitted"
-                        : o.whitted && camera_only     ? "--primid and --depth are for camera rays, not --whitted"
+                        : o.whitted && camera_only
+                            ? "--primid and --depth are for camera rays, not --whitted"
                         : !o.whitted && !o.output.empty() ? "-o is for --whitted"
                                                           : nullptr;
   if (problem) {
@@ -123,7 +124,8 @@ int runCameraRays(const PeerOptions& o, const Scene& scene, const Camera& camera
     if (f > 0) frame_ms.push_back(clock.ms());
   }
   const double frame_median = median(frame_ms);
-  const long long count = std::count_if(hits.begin(), hits.end(), [](const GrHit& h) { return h.prim >= 0; });
+  const long long count =
+      std::count_if(hits.begin(), hits.end(), [](const GrHit& h) { return h.prim >= 0; });
   if (!o.primid_path.empty()) {
     std::vector<float> ids(hits.size());
     for (size_t p = 0; p < hits.size(); ++p) ids[p] = float(hits[p].prim);
@@ -134,10 +136,11 @@ int runCameraRays(const PeerOptions& o, const Scene& scene, const Camera& camera
     for (size_t p = 0; p < hits.size(); ++p) depth[p] = hits[p].prim >= 0 ? hits[p].t : -1.0f;
     writeAov(o.depth_path, o.width, o.height, 1, depth);
   }
-  std::printf("{\"build_ms\": %.4f, \"frame_ms\": %.4f, \"mrays_per_s\": %.4f, \"rays\": %zu, "
-              "\"hits\": %lld, \"threads\": %d, \"packet\": %d, \"triangles\": %zu}\n",
-              embree.buildMs(), frame_median, rays.size() / (frame_median * 1e3), rays.size(),
-              count, o.threads, o.packet, scene.triangleCount());
+  std::printf(
+      "{\"build_ms\": %.4f, \"frame_ms\": %.4f, \"mrays_per_s\": %.4f, \"rays\": %zu, "
+      "\"hits\": %lld, \"threads\": %d, \"packet\": %d, \"triangles\": %zu}\n",
+      embree.buildMs(), frame_median, rays.size() / (frame_median * 1e3), rays.size(), count,
+      o.threads, o.packet, scene.triangleCount());
   return 0;
 }
 
@@ -164,12 +167,13 @@ int runWhitted(const PeerOptions& o, const Scene& scene, const Camera& camera,
   if (!o.output.empty()) writeImage(o.output, frame.film);
   const double frame_median = median(frame_ms);
   const uint64_t rays = frame.rays.total();
-  std::printf("{\"build_ms\": %.4f, \"frame_ms\": %.4f, \"fps\": %.4f, \"mrays_per_s\": %.4f, "
-              "\"rays\": %llu, \"shade_ms\": %.4f, \"primary_ms\": %.4f, \"secondary_ms\": %.4f, "
-              "\"shadow_ms\": %.4f, \"threads\": %d, \"packet\": %d, \"triangles\": %zu}\n",
-              embree.buildMs(), frame_median, 1e3 / frame_median, rays / (frame_median * 1e3),
-              (unsigned long long)rays, median(shade_ms), median(primary_ms), median(secondary_ms),
-              median(shadow_ms), o.threads, o.packet, scene.triangleCount());
+  std::printf(
+      "{\"build_ms\": %.4f, \"frame_ms\": %.4f, \"fps\": %.4f, \"mrays_per_s\": %.4f, "
+      "\"rays\": %llu, \"shade_ms\": %.4f, \"primary_ms\": %.4f, \"secondary_ms\": %.4f, "
+      "\"shadow_ms\": %.4f, \"threads\": %d, \"packet\": %d, \"triangles\": %zu}\n",
+      embree.buildMs(), frame_median, 1e3 / frame_median, rays / (frame_median * 1e3),
+      (unsigned long long)rays, median(shade_ms), median(primary_ms), median(secondary_ms),
+      median(shadow_ms), o.threads, o.packet, scene.triangleCount());
   return 0;
 }
 

@@ -43,8 +43,8 @@ Tile readTile(const std::string& path) {
 }
 
 std::string windowText(const OIIO::ImageSpec& s) {
-  return std::to_string(s.width) + "x" + std::to_string(s.height) + " at (" +
-         std::to_string(s.x) + "," + std::to_string(s.y) + ")";
+  return std::to_string(s.width) + "x" + std::to_string(s.height) + " at (" + std::to_string(s.x) +
+         "," + std::to_string(s.y) + ")";
 }
 
 // The first tile fixes the full (display) window and the channels; the others must match,

@@ -11,8 +11,8 @@
 
 #include "brute_intersector.h"
 #include "camera_rays.h"
-#include "crop_window.h"
 #include "cl_runtime.h"
+#include "crop_window.h"
 #include "dda_intersector.h"
 #include "default_scene.h"
 #include "errors.h"
@@ -33,7 +33,8 @@ namespace gridrt {
 
 namespace {
 
-[[noreturn]] void refuseImage(const Options& o, double bytes, double limit_bytes, const char* where) {
+[[noreturn]] void refuseImage(const Options& o, double bytes, double limit_bytes,
+                              const char* where) {
   const std::string window =
       o.crop ? " (window " + std::to_string(o.crop->x0) + "," + std::to_string(o.crop->y0) + "," +
                    std::to_string(o.crop->x1) + "," + std::to_string(o.crop->y1) +
@@ -72,12 +73,13 @@ auto during(const std::string& what, Step&& step) -> decltype(step()) {
   try {
     return step();
   } catch (const cl::Error& e) {
-    std::string message = "OpenCL error while " + what + ": " + e.what() + " returned " +
-                          clErrorName(e.err());
+    std::string message =
+        "OpenCL error while " + what + ": " + e.what() + " returned " + clErrorName(e.err());
     if (e.err() == CL_OUT_OF_RESOURCES || e.err() == CL_OUT_OF_HOST_MEMORY ||
         e.err() == CL_MEM_OBJECT_ALLOCATION_FAILURE || e.err() == CL_INVALID_BUFFER_SIZE)
-      message += " (the device ran out of memory or resources: try a smaller image, fewer "
-                 "--spp or a coarser --grid)";
+      message +=
+          " (the device ran out of memory or resources: try a smaller image, fewer "
+          "--spp or a coarser --grid)";
     throw RenderError(message);
   }
 }
@@ -135,8 +137,8 @@ std::vector<float> aovData(const PrimaryAovs& a, const std::string& name, int& c
 // (the whole image without --crop); with --crop-output full they are placed in a
 // full-size image, zero outside; with window, the window alone at its offset
 // (host/image/window_output.h).
-void writeCropped(const Options& o, const std::string& path, int channels,
-                  std::vector<float> data, OutputKind kind) {
+void writeCropped(const Options& o, const std::string& path, int channels, std::vector<float> data,
+                  OutputKind kind) {
   if (o.crop && o.crop_output == CropOutput::Window) {
     writeWindowImage(path, *o.crop, o.width, o.height, channels, data);
     return;
@@ -171,10 +173,11 @@ RenderSettings renderSettings(const Options& o) {
   settings.aa_samples = o.aa_samples;
   settings.aa_threshold = o.aa_threshold;
   settings.min_path_weight = o.min_path_weight;
-  if (o.crop) settings.crop = *o.crop;  // only the window's rays are traced
+  if (o.crop) settings.crop = *o.crop;   // only the window's rays are traced
   settings.want_aovs = !o.aovs.empty();  // filling them costs time per frame
   for (const auto& aov : o.aovs)
-    settings.want_diagnostics |= aov.first == "tests" || aov.first == "pe" || aov.first == "listlen";
+    settings.want_diagnostics |=
+        aov.first == "tests" || aov.first == "pe" || aov.first == "listlen";
   return settings;
 }
 
@@ -219,8 +222,7 @@ FrameTimings renderFrames(const Options& o, Renderer& renderer, Intersector& int
 std::unique_ptr<Intersector> makeIntersector(const Options& o, ClRuntime& runtime,
                                              const Scene& scene,
                                              const std::vector<GrTriangle>& triangles,
-                                             const UniformGrid& grid,
-                                             GridRtIntersector*& gridrt) {
+                                             const UniformGrid& grid, GridRtIntersector*& gridrt) {
   gridrt = nullptr;
   const KernelOptions kernel{o.watertight};
   if (o.accel == AccelKind::Brute)
@@ -241,13 +243,14 @@ void printSummary(const Options& o, const Frame& frame, double median_frame,
     window = " window " + std::to_string(o.crop->x0) + "," + std::to_string(o.crop->y0) + "-" +
              std::to_string(o.crop->x1) + "," + std::to_string(o.crop->y1) + ",";
   char line[512];
-  std::snprintf(line, sizeof line, "gridrt: %dx%d,%s %llu rays (%llu primary, %llu shadow, %llu "
+  std::snprintf(line, sizeof line,
+                "gridrt: %dx%d,%s %llu rays (%llu primary, %llu shadow, %llu "
                 "secondary), %.1f ms/frame, %.2f Mrays/s, %s -> %s\n",
                 o.width, o.height, window.c_str(), (unsigned long long)total_rays,
                 (unsigned long long)frame.rays.primary, (unsigned long long)frame.rays.shadow,
-                (unsigned long long)(frame.rays.reflection + frame.rays.refraction),
-                median_frame, median_frame > 0 ? total_rays / (median_frame * 1e3) : 0.0,
-                accel.c_str(), o.output.c_str());
+                (unsigned long long)(frame.rays.reflection + frame.rays.refraction), median_frame,
+                median_frame > 0 ? total_rays / (median_frame * 1e3) : 0.0, accel.c_str(),
+                o.output.c_str());
   std::cerr << line;
 }
 
@@ -257,8 +260,9 @@ int runApplication(const Options& o) {
   if (o.list_devices) {
     auto devices = listDevices();
     if (devices.empty())
-      throw RenderError("no OpenCL platform found: install an OpenCL driver, e.g. 'apt-get "
-                        "install pocl-opencl-icd'");
+      throw RenderError(
+          "no OpenCL platform found: install an OpenCL driver, e.g. 'apt-get "
+          "install pocl-opencl-icd'");
     std::cout << formatDeviceTable(devices);
     return 0;
   }
@@ -294,14 +298,15 @@ int runApplication(const Options& o) {
 
   clock.restart();
   GridRtIntersector* gridrt = nullptr;
-  std::unique_ptr<Intersector> intersector = during("building the kernels and uploading the scene", [&] {
-    return makeIntersector(o, runtime, scene, triangles, grid, gridrt);
-  });
+  std::unique_ptr<Intersector> intersector =
+      during("building the kernels and uploading the scene",
+             [&] { return makeIntersector(o, runtime, scene, triangles, grid, gridrt); });
   double compile_ms = clock.ms();
 
   Renderer renderer(scene, camera, *intersector, renderSettings(o));
   Frame frame;
-  FrameTimings t = during("rendering", [&] { return renderFrames(o, renderer, *intersector, frame); });
+  FrameTimings t =
+      during("rendering", [&] { return renderFrames(o, renderer, *intersector, frame); });
 
   writeOutputs(o, frame);
 
@@ -316,18 +321,23 @@ int runApplication(const Options& o) {
   stats["spp"] = o.spp;
   stats["max_depth"] = o.max_depth;
   stats["accel"] = intersector->name();
-  stats["intersector"] = o.accel == AccelKind::Reference ? "double" : o.watertight ? "watertight" : "mt";
+  stats["intersector"] = o.accel == AccelKind::Reference ? "double"
+                         : o.watertight                  ? "watertight"
+                                                         : "mt";
   stats["aa"] = o.adaptive_aa ? "adaptive" : "uniform";
   stats["refined_pixels"] = frame.refined_pixels;
   stats["passes"] = frame.passes;
   stats["frames_timed"] = t.frame_ms.size();
-  stats["rays"] = {{"primary", frame.rays.primary},       {"shadow", frame.rays.shadow},
-                   {"reflection", frame.rays.reflection}, {"refraction", frame.rays.refraction},
+  stats["rays"] = {{"primary", frame.rays.primary},
+                   {"shadow", frame.rays.shadow},
+                   {"reflection", frame.rays.reflection},
+                   {"refraction", frame.rays.refraction},
                    {"total", total_rays}};
   stats["load_ms"] = load_ms;
   stats["build_ms"] = build_ms;
   stats["compile_ms"] = compile_ms;
-  stats["programs"] = {{"loaded", runtime.programsLoaded()}, {"compiled", runtime.programsCompiled()}};
+  stats["programs"] = {{"loaded", runtime.programsLoaded()},
+                       {"compiled", runtime.programsCompiled()}};
   stats["lists_ms"] = median(t.lists_ms);
   stats["kernel_ms"] = median(t.kernel_ms);
   stats["reduce_ms"] = median(t.reduce_ms);
@@ -366,11 +376,13 @@ int runApplication(const Options& o) {
   if (gridrt) {
     MeanMax rays_pe = meanMax(gridrt->raysPerPe()), tests_pe = meanMax(gridrt->testsPerPe());
     double frames = double(o.repeat + 1);
-    stats["lists"] = {{"length_mean", c.rays ? double(c.list_entries) / double(c.rays) : 0.0},
-                      {"length_max", gridrt->maxListLengthKnown() ? nlohmann::json(gridrt->maxListLength())
-                                                                : nlohmann::json(nullptr)},
-                      {"list_ms", median(t.lists_ms)}};
-    stats["pe_load"] = {{"rays_mean", rays_pe.mean / frames}, {"rays_max", rays_pe.max / frames},
+    stats["lists"] = {
+        {"length_mean", c.rays ? double(c.list_entries) / double(c.rays) : 0.0},
+        {"length_max", gridrt->maxListLengthKnown() ? nlohmann::json(gridrt->maxListLength())
+                                                    : nlohmann::json(nullptr)},
+        {"list_ms", median(t.lists_ms)}};
+    stats["pe_load"] = {{"rays_mean", rays_pe.mean / frames},
+                        {"rays_max", rays_pe.max / frames},
                         {"tests_mean", tests_pe.mean / frames},
                         {"tests_max", tests_pe.max / frames}};
     stats["interrupt"] = {{"camera_rays", gridrt->cameraInterrupt()},

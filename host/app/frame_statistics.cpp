@@ -46,7 +46,8 @@ std::string formatStatisticsTable(const nlohmann::json& stats) {
   size_t width = 0;
   for (const auto& r : rows) width = std::max(width, r.first.size());
   std::ostringstream os;
-  for (const auto& r : rows) os << r.first << std::string(width + 2 - r.first.size(), ' ') << r.second << '\n';
+  for (const auto& r : rows)
+    os << r.first << std::string(width + 2 - r.first.size(), ' ') << r.second << '\n';
   return os.str();
 }
 

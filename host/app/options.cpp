@@ -21,7 +21,8 @@ glm::vec3 parseVec3(const std::string& flag, const std::string& text) {
     for (int i = 0; i < 3; ++i) {
       size_t used = 0;
       v[i] = std::stof(m[i + 1].str(), &used);
-      if (used != size_t(m[i + 1].length()) || !std::isfinite(v[i])) throw std::invalid_argument(text);
+      if (used != size_t(m[i + 1].length()) || !std::isfinite(v[i]))
+        throw std::invalid_argument(text);
     }
   } catch (const std::exception&) {
     throw UsageError(flag + ": expected X,Y,Z (three finite numbers), got '" + text + "'");
@@ -65,7 +66,8 @@ void parseRayOffset(const std::string& text, RayOffset& offset) {
     }
   }
   if (!(e >= 0.0f) || !std::isfinite(e))
-    throw UsageError("--ray-offset: expected 'robust' or 'epsilon=E' with E >= 0, got '" + text + "'");
+    throw UsageError("--ray-offset: expected 'robust' or 'epsilon=E' with E >= 0, got '" + text +
+                     "'");
   offset.robust = false;
   offset.epsilon = e;
 }
@@ -84,23 +86,29 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb)");
   app.add_option("-o,--output", o.output, "output image: .png/.jpg (sRGB) or .exr (linear)")
       ->capture_default_str();
-  app.add_option("--width", o.width, "image width in pixels")->capture_default_str()
+  app.add_option("--width", o.width, "image width in pixels")
+      ->capture_default_str()
       ->check(CLI::Range(1, 65536));
-  app.add_option("--height", o.height, "image height in pixels")->capture_default_str()
+  app.add_option("--height", o.height, "image height in pixels")
+      ->capture_default_str()
       ->check(CLI::Range(1, 65536));
-  app.add_option("--spp", o.spp, "samples per pixel (jittered when > 1)")->capture_default_str()
+  app.add_option("--spp", o.spp, "samples per pixel (jittered when > 1)")
+      ->capture_default_str()
       ->check(CLI::Range(1, 4096));
   app.add_option("--max-depth", o.max_depth, "reflection/refraction bounces")
-      ->capture_default_str()->check(CLI::Range(0, 64));
+      ->capture_default_str()
+      ->check(CLI::Range(0, 64));
   app.add_option("--device", o.device, "OpenCL device: P:D or part of its name (default: first)");
   app.add_flag("--list-devices", o.list_devices, "list OpenCL devices and exit");
   app.add_option("--accel", raw.accel,
                  "intersector: gridrt, dda, brute (device) or reference (host, double)")
-      ->capture_default_str()->check(CLI::IsMember({"gridrt", "dda", "brute", "reference"}));
+      ->capture_default_str()
+      ->check(CLI::IsMember({"gridrt", "dda", "brute", "reference"}));
   app.add_option("--grid", raw.grid, "grid resolution: auto or NX,NY,NZ")->capture_default_str();
   app.add_option("--grid-density", o.grid.density,
                  "lambda of the auto resolution R_i = d_i*cbrt(lambda*N/V)")
-      ->capture_default_str()->check(CLI::Range(0.001f, 1000.0f));
+      ->capture_default_str()
+      ->check(CLI::Range(0.001f, 1000.0f));
   app.add_flag("--pe-interrupt", o.pe_interrupt,
                "gridrt: in every batch a PE skips rays an earlier PE has hit (the paper's "
                "interrupt; camera rays always use it)");
@@ -110,31 +118,38 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
                  "NAME=FILE (repeatable; .exr): depth, primid, normal, tests, pe, listlen")
       ->allow_extra_args(false);  // one value per --aov, so a scene path may follow
   app.add_option("--repeat", o.repeat, "render N more frames after the first, for timing")
-      ->capture_default_str()->check(CLI::Range(0, 100000));
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
   app.add_option("--stats-json", o.stats_json, "write statistics as JSON to FILE");
   app.add_flag("--stats", o.stats, "print a statistics table");
   app.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
   app.add_option("--background", raw.background, "background colour R,G,B (linear)");
   app.add_option("--ambient", o.ambient, "ambient factor (times diffuse albedo)")
-      ->capture_default_str()->check(CLI::Range(0.0f, 1000.0f));
+      ->capture_default_str()
+      ->check(CLI::Range(0.0f, 1000.0f));
   app.add_option("--ray-offset", raw.ray_offset,
                  "secondary ray origins: robust (scale-aware) or epsilon=E")
       ->capture_default_str();
   app.add_option("--intersector", raw.intersector,
                  "ray/triangle test: mt (Moeller-Trumbore) or watertight (Woop et al. 2013)")
-      ->capture_default_str()->check(CLI::IsMember({"mt", "watertight"}));
+      ->capture_default_str()
+      ->check(CLI::IsMember({"mt", "watertight"}));
   app.add_option("--aa", raw.aa,
                  "anti-aliasing: uniform (--spp samples) or adaptive (centres, then "
                  "--aa-samples more where neighbours differ by > --aa-threshold)")
-      ->capture_default_str()->check(CLI::IsMember({"uniform", "adaptive"}));
+      ->capture_default_str()
+      ->check(CLI::IsMember({"uniform", "adaptive"}));
   app.add_option("--aa-samples", o.aa_samples, "adaptive: extra samples per refined pixel")
-      ->capture_default_str()->check(CLI::Range(1, 4096));
+      ->capture_default_str()
+      ->check(CLI::Range(1, 4096));
   app.add_option("--aa-threshold", o.aa_threshold,
                  "adaptive: largest neighbour difference (linear, any channel) left alone")
-      ->capture_default_str()->check(CLI::Range(0.0f, 1000.0f));
+      ->capture_default_str()
+      ->check(CLI::Range(0.0f, 1000.0f));
   app.add_option("--min-path-weight", o.min_path_weight,
                  "adaptive depth: skip bounces whose throughput is below this (0: never)")
-      ->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
+      ->capture_default_str()
+      ->check(CLI::Range(0.0f, 1.0f));
   app.add_option("--camera", o.camera_name, "use the glTF camera with this name");
   app.add_option("--look-at", raw.look_at, "EX,EY,EZ:TX,TY,TZ camera eye and target");
   app.add_option("--fov", o.fov_degrees, "vertical field of view in degrees")
@@ -144,7 +159,8 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.add_option("--crop-output", raw.crop_output,
                  "with --crop: full (full-size image, zero outside) or window (.exr/.tif only, "
                  "offset kept in the data window)")
-      ->capture_default_str()->check(CLI::IsMember({"full", "window"}));
+      ->capture_default_str()
+      ->check(CLI::IsMember({"full", "window"}));
   app.set_version_flag("--version", std::string("gridrt ") + GRIDRT_VERSION);
 }
 
@@ -154,9 +170,10 @@ void finishCrop(Options& o, const RawOptions& raw) {
   o.crop = parseCropWindow(raw.crop, o.width, o.height);
   // A window alone must say where it lies, which only formats with a data window can.
   if (o.crop_output == CropOutput::Window && !keepsDataWindow(o.output))
-    throw UsageError("--crop-output window: the output must be .exr, .tif or .tiff (the "
-                     "window's offset is kept in the file's data window), got '" +
-                     o.output + "'");
+    throw UsageError(
+        "--crop-output window: the output must be .exr, .tif or .tiff (the "
+        "window's offset is kept in the file's data window), got '" +
+        o.output + "'");
 }
 
 void finish(Options& o, const RawOptions& raw) {
@@ -184,8 +201,10 @@ void finish(Options& o, const RawOptions& raw) {
     bool known = false;
     for (const char* k : kAovNames) known |= name == k;
     if (eq == std::string::npos || eq + 1 == spec.size() || !known)
-      throw UsageError("--aov: expected NAME=FILE with NAME one of depth, primid, normal, tests, "
-                       "pe, listlen; got '" + spec + "'");
+      throw UsageError(
+          "--aov: expected NAME=FILE with NAME one of depth, primid, normal, tests, "
+          "pe, listlen; got '" +
+          spec + "'");
     o.aovs.emplace_back(name, spec.substr(eq + 1));
   }
 }

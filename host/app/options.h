@@ -22,29 +22,29 @@ struct Options {
   int height = 480;
   int spp = 1;
   int max_depth = 5;
-  std::string device;                 // "" first device, "P:D", or a name substring
+  std::string device;  // "" first device, "P:D", or a name substring
   bool list_devices = false;
   AccelKind accel = AccelKind::GridRt;
-  GridSettings grid;                  // --grid auto | NX,NY,NZ; --grid-density
-  bool pe_interrupt = false;          // emulate the paper's interrupt on the device
-  bool primary_only = false;          // primary rays, headlight shading
+  GridSettings grid;          // --grid auto | NX,NY,NZ; --grid-density
+  bool pe_interrupt = false;  // emulate the paper's interrupt on the device
+  bool primary_only = false;  // primary rays, headlight shading
   std::vector<std::pair<std::string, std::string>> aovs;  // NAME=FILE
-  int repeat = 0;                     // extra timed frames after the first
-  std::string stats_json;             // write statistics as JSON here
-  bool stats = false;                 // print a statistics table
+  int repeat = 0;                                         // extra timed frames after the first
+  std::string stats_json;                                 // write statistics as JSON here
+  bool stats = false;                                     // print a statistics table
   bool quiet = false;
   glm::vec3 background{0.0f};
   float ambient = 0.05f;
   RayOffset ray_offset;
-  bool watertight = false;            // --intersector watertight (default mt)
-  bool adaptive_aa = false;           // --aa adaptive (default uniform --spp)
-  int aa_samples = 8;                 // extra samples of a refined pixel
-  float aa_threshold = 0.1f;          // neighbour difference that triggers refinement
-  float min_path_weight = 0.0f;       // adaptive depth: 0 traces every bounce
-  std::string camera_name;            // pick a glTF camera by name
-  std::optional<glm::vec3> eye, target;  // --look-at overrides
-  std::optional<float> fov_degrees;      // --fov override (vertical, degrees)
-  std::optional<PixelWindow> crop;        // --crop: render only this window of the image
+  bool watertight = false;                    // --intersector watertight (default mt)
+  bool adaptive_aa = false;                   // --aa adaptive (default uniform --spp)
+  int aa_samples = 8;                         // extra samples of a refined pixel
+  float aa_threshold = 0.1f;                  // neighbour difference that triggers refinement
+  float min_path_weight = 0.0f;               // adaptive depth: 0 traces every bounce
+  std::string camera_name;                    // pick a glTF camera by name
+  std::optional<glm::vec3> eye, target;       // --look-at overrides
+  std::optional<float> fov_degrees;           // --fov override (vertical, degrees)
+  std::optional<PixelWindow> crop;            // --crop: render only this window of the image
   CropOutput crop_output = CropOutput::Full;  // --crop-output full | window
 };
 

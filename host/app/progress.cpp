@@ -16,8 +16,10 @@ constexpr double kRedrawIntervalMs = 100.0;
 
 std::string formatSeconds(double s) {
   char text[32];
-  if (s < 60.0) std::snprintf(text, sizeof text, "%.1f s", s);
-  else std::snprintf(text, sizeof text, "%d min %02d s", int(s) / 60, int(s) % 60);
+  if (s < 60.0)
+    std::snprintf(text, sizeof text, "%.1f s", s);
+  else
+    std::snprintf(text, sizeof text, "%d min %02d s", int(s) / 60, int(s) % 60);
   return text;
 }
 
@@ -36,8 +38,8 @@ std::string formatProgressLine(double fraction, double elapsed_s, double remaini
   bar.append(size_t(kBarCells - filled), '.');
   char percent[8];
   std::snprintf(percent, sizeof percent, "%3d%%", int(fraction * 100.0 + 0.5));
-  return "gridrt: [" + bar + "] " + percent + "  " + formatSeconds(elapsed_s) +
-         " elapsed, about " + formatSeconds(std::max(0.0, remaining_s)) + " left";
+  return "gridrt: [" + bar + "] " + percent + "  " + formatSeconds(elapsed_s) + " elapsed, about " +
+         formatSeconds(std::max(0.0, remaining_s)) + " left";
 }
 
 ProgressBar::ProgressBar(bool enabled, double delay_s)

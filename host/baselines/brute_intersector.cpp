@@ -6,12 +6,12 @@
 namespace gridrt {
 
 namespace {
-constexpr int kLanes = 16;      // rays per work-item (float16)
-constexpr int kLocalSize = 8;   // work-items per work-group: fixed, so PoCL compiles once
+constexpr int kLanes = 16;     // rays per work-item (float16)
+constexpr int kLocalSize = 8;  // work-items per work-group: fixed, so PoCL compiles once
 }  // namespace
 
 BruteIntersector::BruteIntersector(ClRuntime& runtime, const std::vector<GrTriangle>& triangles,
-                   const KernelOptions& kernel_options)
+                                   const KernelOptions& kernel_options)
     : rt_(runtime), triangle_count_(int(triangles.size())) {
   kernel_ = cl::Kernel(rt_.program("brute.cl", kernel_options.defines()), "brute_intersect");
   checkTriangleLayout(triangles, kernel_options);

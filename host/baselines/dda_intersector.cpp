@@ -11,7 +11,7 @@ constexpr int kLocalSize = 64;  // work-items per work-group: fixed, so PoCL com
 }
 
 DdaIntersector::DdaIntersector(ClRuntime& runtime, const UniformGrid& grid,
-                   const KernelOptions& kernel_options)
+                               const KernelOptions& kernel_options)
     : rt_(runtime), grid_(grid) {
   kernel_ = cl::Kernel(rt_.program("dda.cl", kernel_options.defines()), "dda_intersect");
   checkTriangleLayout(grid.pe_triangles, kernel_options);

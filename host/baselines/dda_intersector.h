@@ -11,7 +11,7 @@ namespace gridrt {
 class DdaIntersector : public Intersector {
  public:
   DdaIntersector(ClRuntime& runtime, const UniformGrid& grid,
-                   const KernelOptions& kernel_options = {});
+                 const KernelOptions& kernel_options = {});
   std::string name() const override { return "dda"; }
   void intersect(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                  RayDiagnostics* diagnostics) override;

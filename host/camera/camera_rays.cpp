@@ -37,8 +37,8 @@ CameraRayGenerator::CameraRayGenerator(const Camera& camera, int width, int heig
       tan_half_(std::tan(camera.yfov * 0.5f)),
       origin_(camera.world[3]) {}
 
-void CameraRayGenerator::centreRow(int j, int i0, int i1, GrRay* out, float* out_dx,
-                                   float* out_dy, float* out_dz) const {
+void CameraRayGenerator::centreRow(int j, int i0, int i1, GrRay* out, float* out_dx, float* out_dy,
+                                   float* out_dz) const {
   if (camera_.orthographic) {
     for (int i = i0; i < i1; ++i) {
       const GrRay ray = (*this)(i, j, 0.5f, 0.5f);
@@ -70,8 +70,9 @@ void CameraRayGenerator::centreRow(int j, int i0, int i1, GrRay* out, float* out
       dz[k] = wz * inv2;
     }
     for (int k = 0; k < count; ++k)
-      out[c0 - i0 + k] = GrRay{origin_.x, origin_.y, origin_.z, 0.0f, dx[k], dy[k], dz[k],
-                               std::numeric_limits<float>::infinity()};
+      out[c0 - i0 + k] =
+          GrRay{origin_.x, origin_.y, origin_.z, 0.0f,
+                dx[k],     dy[k],     dz[k],     std::numeric_limits<float>::infinity()};
     if (out_dx)
       for (int k = 0; k < count; ++k) {
         out_dx[c0 - i0 + k] = dx[k];

@@ -52,7 +52,8 @@ inline GrRay CameraRayGenerator::operator()(int i, int j, float sx, float sy) co
   glm::vec3 origin, direction;
   if (camera_.orthographic) {
     // ymag is the half height; the image aspect sets the half width.
-    glm::vec4 o = camera_.world * glm::vec4(x * camera_.ymag * aspect_, y * camera_.ymag, 0.0f, 1.0f);
+    glm::vec4 o =
+        camera_.world * glm::vec4(x * camera_.ymag * aspect_, y * camera_.ymag, 0.0f, 1.0f);
     origin = glm::vec3(o);
     direction = glm::vec3(camera_.world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
   } else {
@@ -61,8 +62,8 @@ inline GrRay CameraRayGenerator::operator()(int i, int j, float sx, float sy) co
     direction = glm::vec3(camera_.world * glm::vec4(glm::normalize(d), 0.0f));
   }
   direction = glm::normalize(direction);
-  return GrRay{origin.x, origin.y, origin.z, 0.0f, direction.x, direction.y, direction.z,
-               std::numeric_limits<float>::infinity()};
+  return GrRay{origin.x,    origin.y,    origin.z,    0.0f,
+               direction.x, direction.y, direction.z, std::numeric_limits<float>::infinity()};
 }
 
 // A box holding the origin of every primary ray of the camera: its eye, or for an

@@ -15,8 +15,8 @@ struct PinholeView {
   // bundles' outlines use (camera_bundles.cpp), free of the float inverse's cancellation
   // (a box far from the world origin seen from nearby).
   glm::dmat4 exact_world_to_camera{1.0};
-  float tan_half = 0.0f;  // tan(yfov / 2)
-  float aspect = 1.0f;    // width / height of the image plane
+  float tan_half = 0.0f;      // tan(yfov / 2)
+  float aspect = 1.0f;        // width / height of the image plane
   int width = 0, height = 0;  // the full image
   PixelWindow window;         // the pixels of this batch
 

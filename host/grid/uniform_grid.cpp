@@ -61,8 +61,7 @@ glm::ivec3 autoGridResolution(const Bounds& bounds, size_t triangle_count, float
   d = glm::max(d, glm::dvec3(largest * 1e-3));
   double k = std::cbrt(double(density) * double(triangle_count) / (d.x * d.y * d.z));
   glm::ivec3 r;
-  for (int a = 0; a < 3; ++a)
-    r[a] = std::clamp(int(std::lround(d[a] * k)), 1, kMaxGridResolution);
+  for (int a = 0; a < 3; ++a) r[a] = std::clamp(int(std::lround(d[a] * k)), 1, kMaxGridResolution);
   while ((long long)r.x * r.y * r.z > kMaxGridVoxels) r = glm::max(r / 2, glm::ivec3(1));
   return r;
 }
@@ -115,7 +114,8 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
       glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2]));
       glm::dvec3 thi = glm::max(v[0], glm::max(v[1], v[2]));
       int first[3], last[3];
-      for (int a = 0; a < 3; ++a) axisRange(tlo[a], thi[a], gmin[a], cell[a], m, n[a], first[a], last[a]);
+      for (int a = 0; a < 3; ++a)
+        axisRange(tlo[a], thi[a], gmin[a], cell[a], m, n[a], first[a], last[a]);
       // A triangle whose bounding box meets one grown voxel only lies inside it (the
       // grown voxels cover the grid, which contains every triangle): no test needed.
       if (first[0] == last[0] && first[1] == last[1] && first[2] == last[2]) {

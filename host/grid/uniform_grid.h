@@ -35,9 +35,9 @@ constexpr int kMaxGridResolution = 512;
 constexpr long long kMaxGridVoxels = 1 << 24;
 
 struct GridSettings {
-  bool automatic = true;          // derive the resolution from N and the box's shape
+  bool automatic = true;  // derive the resolution from N and the box's shape
   float density = kDefaultGridDensity;
-  glm::ivec3 dims{1, 1, 1};       // used when !automatic
+  glm::ivec3 dims{1, 1, 1};            // used when !automatic
   double margin_rel = kGridMarginRel;  // tests set 0 to show what the margin prevents
   // Where rays start outside the scene's box (the camera: primaryRayOrigins). A hit's
   // rounding grows with its ray's origin as much as with the scene's coordinates, so
@@ -48,9 +48,9 @@ struct GridSettings {
 struct UniformGrid {
   GrGridInfo info{};
   double margin = 0.0;
-  std::vector<int> pe_of_voxel;   // per voxel (x fastest), -1 if empty
-  std::vector<int> voxel_of_pe;   // per PE, its linear voxel index
-  std::vector<int> pe_tri_begin;  // per PE + 1: CSR offsets into pe_triangles
+  std::vector<int> pe_of_voxel;          // per voxel (x fastest), -1 if empty
+  std::vector<int> voxel_of_pe;          // per PE, its linear voxel index
+  std::vector<int> pe_tri_begin;         // per PE + 1: CSR offsets into pe_triangles
   std::vector<GrTriangle> pe_triangles;  // per PE, its triangles in increasing global index
   size_t triangle_count = 0;
 

@@ -59,12 +59,10 @@ struct PacketResults {
 }  // namespace
 
 GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid,
-                                     PeInterrupt interrupt,
-                                     const KernelOptions& kernel_options)
+                                     PeInterrupt interrupt, const KernelOptions& kernel_options)
     : rt_(runtime), grid_(grid), interrupt_(interrupt) {
-  const std::string defines =
-      "-DGR_PE_LOCAL_SIZE=" + std::to_string(kPeLocalSize) + " " + segmentCullDefines() + " " +
-      kernel_options.defines();
+  const std::string defines = "-DGR_PE_LOCAL_SIZE=" + std::to_string(kPeLocalSize) + " " +
+                              segmentCullDefines() + " " + kernel_options.defines();
   kernel_ = cl::Kernel(rt_.program("gridrt_lists.cl", defines), "gridrt_lists");
   bundle_kernel_ = cl::Kernel(rt_.program("gridrt_bundles.cl", defines), "gridrt_bundles");
   checkTriangleLayout(grid.pe_triangles, kernel_options);
@@ -108,8 +106,8 @@ void GridRtIntersector::runPes(size_t n, HitMode mode) {
                                      cl::NDRange(kPeLocalSize));
     results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
     // Mapped again for the next batch's pairs once the kernel has read them.
-    entries_map_ = mapBuffer<float>(rt_, entries_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
-                                    entries_.capacity());
+    entries_map_ =
+        mapBuffer<float>(rt_, entries_.get(), CL_MAP_WRITE_INVALIDATE_REGION, entries_.capacity());
   });
 }
 
@@ -260,7 +258,8 @@ void GridRtIntersector::intersectTowardsPoint(const glm::vec3& point,
   Stopwatch clock;
   bundleLightRays(grid_, point, rays.data(), rays.size(), light_bundles_, light_scratch_);
   counters_.lists_ms += clock.ms();
-  if (!force_light_bundles_ && light_bundles_.out_lanes > kMaxLightBundleLanesPerRay * rays.size()) {
+  if (!force_light_bundles_ &&
+      light_bundles_.out_lanes > kMaxLightBundleLanesPerRay * rays.size()) {
     intersect(rays, mode, hits, nullptr);
     return;
   }
@@ -350,8 +349,8 @@ void GridRtIntersector::generateAndIntersectPrimary(const PinholeView& view,
 
 void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const RayBundles& bundles,
                                          HitMode mode, bool interrupt, std::vector<GrHit>& hits,
-                                         RayDiagnostics* diagnostics,
-                                         const GrCullFrame* cull_frame, const PlaneFill* fill) {
+                                         RayDiagnostics* diagnostics, const GrCullFrame* cull_frame,
+                                         const PlaneFill* fill) {
   const size_t n = rays.size();
   hits.resize(n);
   const size_t slots = bundles.ray_of.size();
@@ -371,16 +370,16 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       enqueueUnmaps();
       enqueuePlanesUnmap();
       planes_.reserve(rt_, GR_PLANES * stride);
-      planes = planes_map_ = mapBuffer<float>(rt_, planes_.get(),
-                                              CL_MAP_WRITE_INVALIDATE_REGION, planes_.capacity());
+      planes = planes_map_ =
+          mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION, planes_.capacity());
     });
   }
   int differing = 0, uncovered = 0;
   if (fill) fill->write(planes, stride, differing, uncovered);
   const GrRay common = fill ? fill->common : n ? rays[0] : GrRay{};
   auto sameStart = [&](const GrRay& r) {
-    return r.ox == common.ox && r.oy == common.oy && r.oz == common.oz &&
-           r.tmin == common.tmin && r.tmax == common.tmax;
+    return r.ox == common.ox && r.oy == common.oy && r.oz == common.oz && r.tmin == common.tmin &&
+           r.tmax == common.tmax;
   };
   // Rays off the culling frame's forward count as uncovered (padding does not count);
   // without a frame (light bundles) nothing is checked.
@@ -462,8 +461,8 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
                                      cl::NDRange(kPeLocalSize));
     results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
     // Mapped again for the next bundle batch once the kernel has read it.
-    planes_map_ = mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
-                                   planes_.capacity());
+    planes_map_ =
+        mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION, planes_.capacity());
   });
   const PacketResults results(results_map_, lanes, GR_BUNDLE_RESULT_PLANES);
   counters_.kernel_ms += clock.ms();
@@ -549,4 +548,3 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
 }
 
 }  // namespace gridrt
-

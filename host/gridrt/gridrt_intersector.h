@@ -54,9 +54,7 @@ class GridRtIntersector : public Intersector {
   ~GridRtIntersector() override;
   GridRtIntersector(const GridRtIntersector&) = delete;
   GridRtIntersector& operator=(const GridRtIntersector&) = delete;
-  std::string name() const override {
-    return allInterrupt() ? "gridrt-interrupt" : "gridrt";
-  }
+  std::string name() const override { return allInterrupt() ? "gridrt-interrupt" : "gridrt"; }
   void intersect(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                  RayDiagnostics* diagnostics) override;
   // Primary rays as camera bundles (camera_bundles.h): PEs receive runs of pixel tiles
@@ -72,8 +70,8 @@ class GridRtIntersector : public Intersector {
 
   // Shadow rays as light bundles (light_bundles.h): PEs receive runs of rays through
   // their voxels' outlines as seen from the point.
-  void intersectTowardsPoint(const glm::vec3& point, const std::vector<GrRay>& rays,
-                             HitMode mode, std::vector<GrHit>& hits) override;
+  void intersectTowardsPoint(const glm::vec3& point, const std::vector<GrRay>& rays, HitMode mode,
+                             std::vector<GrHit>& hits) override;
   // Tests send every light batch through the bundles, whatever its size and shape.
   void forceLightBundles() { force_light_bundles_ = true; }
   // Which batches run with the interrupt chain.
@@ -136,10 +134,9 @@ class GridRtIntersector : public Intersector {
   };
   // interrupt: the kernel skips lanes an earlier PE has hit (the batch's bundles put
   // nearer PEs first, camera_bundles.h).
-  void intersectBundles(const std::vector<GrRay>& rays, const RayBundles& bundles,
-                        HitMode mode, bool interrupt, std::vector<GrHit>& hits,
-                        RayDiagnostics* diagnostics, const GrCullFrame* cull_frame = nullptr,
-                        const PlaneFill* fill = nullptr);
+  void intersectBundles(const std::vector<GrRay>& rays, const RayBundles& bundles, HitMode mode,
+                        bool interrupt, std::vector<GrHit>& hits, RayDiagnostics* diagnostics,
+                        const GrCullFrame* cull_frame = nullptr, const PlaneFill* fill = nullptr);
   // The frame the kernel gets for this batch (enabled 0 unless culling is allowed: common
   // origin, every ray covered by the frame); uploads the PE triangles' boxes when they
   // changed.

@@ -23,10 +23,10 @@ PixelWindow parseCropWindow(const std::string& text, int width, int height) {
     throw UsageError("--crop: expected X0,Y0,X1,Y1 (four pixel bounds), got '" + text + "'");
   PixelWindow w{std::stoi(m[1]), std::stoi(m[2]), std::stoi(m[3]), std::stoi(m[4])};
   if (w.x0 >= w.x1 || w.y0 >= w.y1 || w.x1 > width || w.y1 > height)
-    throw UsageError("--crop: window '" + text + "' must satisfy X0 < X1 <= " +
-                     std::to_string(width) + " and Y0 < Y1 <= " + std::to_string(height) +
-                     " (half-open pixel bounds inside the " + std::to_string(width) + "x" +
-                     std::to_string(height) + " image)");
+    throw UsageError(
+        "--crop: window '" + text + "' must satisfy X0 < X1 <= " + std::to_string(width) +
+        " and Y0 < Y1 <= " + std::to_string(height) + " (half-open pixel bounds inside the " +
+        std::to_string(width) + "x" + std::to_string(height) + " image)");
   return w;
 }
 

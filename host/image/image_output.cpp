@@ -1,7 +1,7 @@
 #include "image_output.h"
 
-#include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/color.h>
+#include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
@@ -55,15 +55,13 @@ fs::path directoryOf(const std::string& path) {
 
 void checkSize(const std::string& path, int width, int height, int channels, size_t count) {
   if (width <= 0 || height <= 0 || channels <= 0)
-    failWrite(path, "invalid image size " + std::to_string(width) + "x" +
-                        std::to_string(height) + " with " + std::to_string(channels) +
-                        " channels");
+    failWrite(path, "invalid image size " + std::to_string(width) + "x" + std::to_string(height) +
+                        " with " + std::to_string(channels) + " channels");
   size_t expected = size_t(width) * size_t(height) * size_t(channels);
   if (count != expected)
-    failWrite(path, "image is " + std::to_string(width) + "x" + std::to_string(height) +
-                        " with " + std::to_string(channels) + " channels but has " +
-                        std::to_string(count) + " values (expected " +
-                        std::to_string(expected) + ")");
+    failWrite(path, "image is " + std::to_string(width) + "x" + std::to_string(height) + " with " +
+                        std::to_string(channels) + " channels but has " + std::to_string(count) +
+                        " values (expected " + std::to_string(expected) + ")");
 }
 
 OIIO::ImageBuf makeBuffer(int width, int height, int channels, const float* data) {
@@ -78,9 +76,9 @@ OIIO::ImageBuf makeBuffer(int width, int height, int channels, const float* data
 void writeAtomically(const std::string& path, const OIIO::ImageBuf& buf, OIIO::TypeDesc format) {
   static std::atomic<unsigned> counter{0};  // distinct names for concurrent writers
   const fs::path target(path);
-  const fs::path temp = directoryOf(path) /
-                        ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) +
-                         "-" + std::to_string(counter++) + target.extension().string());
+  const fs::path temp =
+      directoryOf(path) / ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) +
+                           "-" + std::to_string(counter++) + target.extension().string());
   try {
     if (!buf.write(temp.string(), format)) failWrite(path, oneLine(buf.geterror()));
     if (std::rename(temp.c_str(), path.c_str()) != 0) failWrite(path, std::strerror(errno));

@@ -19,9 +19,7 @@ enum class HitMode { Closest, AnyHit };
 struct KernelOptions {
   bool watertight = false;  // Woop-Benthin-Wald watertight test instead of Moeller-Trumbore
   // The watertight test reads vertices, not edges (GrTriangle::vertex_layout).
-  std::string defines() const {
-    return watertight ? "-DGR_WATERTIGHT -DGR_TRIANGLE_VERTICES" : "";
-  }
+  std::string defines() const { return watertight ? "-DGR_WATERTIGHT -DGR_TRIANGLE_VERTICES" : ""; }
 };
 
 // Work and time counted over all batches since the last reset.
@@ -31,12 +29,12 @@ struct IntersectCounters {
   // skipped by the interrupt) times the PE's triangles, the paper's count; for the others
   // the tests they ran.
   uint64_t tests = 0;
-  uint64_t tests_run = 0;     // ray-triangle tests run (gridrt: those left after culling)
-  uint64_t list_entries = 0;  // (ray, PE) pairs (gridrt)
-  uint64_t skipped_pairs = 0; // pairs skipped by the emulated interrupt
-  double lists_ms = 0;        // traversal lists and binning on the host
-  double kernel_ms = 0;       // upload + kernel + download
-  double reduce_ms = 0;       // phase-2 reduction on the host
+  uint64_t tests_run = 0;      // ray-triangle tests run (gridrt: those left after culling)
+  uint64_t list_entries = 0;   // (ray, PE) pairs (gridrt)
+  uint64_t skipped_pairs = 0;  // pairs skipped by the emulated interrupt
+  double lists_ms = 0;         // traversal lists and binning on the host
+  double kernel_ms = 0;        // upload + kernel + download
+  double reduce_ms = 0;        // phase-2 reduction on the host
 };
 
 // Per-ray diagnostics for AOVs, filled when requested.

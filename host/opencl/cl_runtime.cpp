@@ -3,12 +3,12 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cctype>
 #include <condition_variable>
+#include <cstdlib>
 #include <exception>
 #include <mutex>
 #include <optional>
-#include <cctype>
-#include <cstdlib>
 #include <regex>
 #include <sstream>
 
@@ -102,8 +102,8 @@ std::string formatDeviceTable(const std::vector<DeviceInfo>& devices) {
   os << line;
   for (const auto& d : devices) {
     std::snprintf(line, sizeof line, "%d:%-3d %-6s %-46.46s %5u %8zu %10llu %10llu\n",
-                  d.platform_index, d.device_index, d.type.c_str(), d.name.c_str(),
-                  d.compute_units, d.max_work_group_size, d.local_mem_bytes / 1024,
+                  d.platform_index, d.device_index, d.type.c_str(), d.name.c_str(), d.compute_units,
+                  d.max_work_group_size, d.local_mem_bytes / 1024,
                   d.global_mem_bytes / (1024 * 1024));
     os << line;
   }
@@ -123,12 +123,11 @@ std::string assembleKernelSource(const std::string& file) {
   while (std::getline(in, line)) {
     ++line_number;
     std::smatch m;
-    if (std::regex_match(line, m, include_line) &&
-        embeddedKernelSource("common/" + m[1].str())) {
+    if (std::regex_match(line, m, include_line) && embeddedKernelSource("common/" + m[1].str())) {
       // Headers are guarded, so including one twice is harmless. The generated source
       // starts with '#line 1', so the line after the include is line_number here.
-      out << assembleKernelSource("common/" + m[1].str()) << "\n#line " << line_number
-          << " \"" << file << "\"\n";
+      out << assembleKernelSource("common/" + m[1].str()) << "\n#line " << line_number << " \""
+          << file << "\"\n";
     } else {
       out << line << '\n';
     }
@@ -284,22 +283,38 @@ void ClRuntime::checkAllocation(size_t bytes, const std::string& what) const {
 
 std::string clErrorName(int code) {
   switch (code) {
-    case CL_DEVICE_NOT_FOUND: return "CL_DEVICE_NOT_FOUND";
-    case CL_DEVICE_NOT_AVAILABLE: return "CL_DEVICE_NOT_AVAILABLE";
-    case CL_COMPILER_NOT_AVAILABLE: return "CL_COMPILER_NOT_AVAILABLE";
-    case CL_MEM_OBJECT_ALLOCATION_FAILURE: return "CL_MEM_OBJECT_ALLOCATION_FAILURE";
-    case CL_OUT_OF_RESOURCES: return "CL_OUT_OF_RESOURCES";
-    case CL_OUT_OF_HOST_MEMORY: return "CL_OUT_OF_HOST_MEMORY";
-    case CL_BUILD_PROGRAM_FAILURE: return "CL_BUILD_PROGRAM_FAILURE";
-    case CL_INVALID_VALUE: return "CL_INVALID_VALUE";
-    case CL_INVALID_BUFFER_SIZE: return "CL_INVALID_BUFFER_SIZE";
-    case CL_INVALID_KERNEL_ARGS: return "CL_INVALID_KERNEL_ARGS";
-    case CL_INVALID_WORK_GROUP_SIZE: return "CL_INVALID_WORK_GROUP_SIZE";
-    case CL_INVALID_WORK_ITEM_SIZE: return "CL_INVALID_WORK_ITEM_SIZE";
-    case CL_INVALID_GLOBAL_WORK_SIZE: return "CL_INVALID_GLOBAL_WORK_SIZE";
-    case CL_INVALID_BUILD_OPTIONS: return "CL_INVALID_BUILD_OPTIONS";
-    case -1001: return "CL_PLATFORM_NOT_FOUND_KHR";
-    default: return "OpenCL error " + std::to_string(code);
+    case CL_DEVICE_NOT_FOUND:
+      return "CL_DEVICE_NOT_FOUND";
+    case CL_DEVICE_NOT_AVAILABLE:
+      return "CL_DEVICE_NOT_AVAILABLE";
+    case CL_COMPILER_NOT_AVAILABLE:
+      return "CL_COMPILER_NOT_AVAILABLE";
+    case CL_MEM_OBJECT_ALLOCATION_FAILURE:
+      return "CL_MEM_OBJECT_ALLOCATION_FAILURE";
+    case CL_OUT_OF_RESOURCES:
+      return "CL_OUT_OF_RESOURCES";
+    case CL_OUT_OF_HOST_MEMORY:
+      return "CL_OUT_OF_HOST_MEMORY";
+    case CL_BUILD_PROGRAM_FAILURE:
+      return "CL_BUILD_PROGRAM_FAILURE";
+    case CL_INVALID_VALUE:
+      return "CL_INVALID_VALUE";
+    case CL_INVALID_BUFFER_SIZE:
+      return "CL_INVALID_BUFFER_SIZE";
+    case CL_INVALID_KERNEL_ARGS:
+      return "CL_INVALID_KERNEL_ARGS";
+    case CL_INVALID_WORK_GROUP_SIZE:
+      return "CL_INVALID_WORK_GROUP_SIZE";
+    case CL_INVALID_WORK_ITEM_SIZE:
+      return "CL_INVALID_WORK_ITEM_SIZE";
+    case CL_INVALID_GLOBAL_WORK_SIZE:
+      return "CL_INVALID_GLOBAL_WORK_SIZE";
+    case CL_INVALID_BUILD_OPTIONS:
+      return "CL_INVALID_BUILD_OPTIONS";
+    case -1001:
+      return "CL_PLATFORM_NOT_FOUND_KHR";
+    default:
+      return "OpenCL error " + std::to_string(code);
   }
 }
 

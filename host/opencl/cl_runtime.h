@@ -2,9 +2,8 @@
 // queue and the programs built for it (RAII through opencl.hpp's reference counting).
 #pragma once
 #include <CL/opencl.hpp>
-
-#include <map>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 

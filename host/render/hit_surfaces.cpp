@@ -44,8 +44,8 @@ void smoothSurfaceLanes(const ShadingTriangle* triangles, SurfaceLanes& s) {
   for (int k = 0; k < L; ++k) {
     const ShadingTriangle& tri = triangles[s.tri[k]];
     const HitSurface h =
-        surfaceAt<true>(&tri, glm::vec3(tri.geometric.x, tri.geometric.y, tri.geometric.z),
-                        s.ox[k], s.oy[k], s.oz[k], s.dx[k], s.dy[k], s.dz[k], s.t[k]);
+        surfaceAt<true>(&tri, glm::vec3(tri.geometric.x, tri.geometric.y, tri.geometric.z), s.ox[k],
+                        s.oy[k], s.oz[k], s.dx[k], s.dy[k], s.dz[k], s.t[k]);
     s.px[k] = h.px, s.py[k] = h.py, s.pz[k] = h.pz;
     s.nx[k] = h.nx, s.ny[k] = h.ny, s.nz[k] = h.nz;
     s.gx[k] = h.gx, s.gy[k] = h.gy, s.gz[k] = h.gz;
@@ -57,9 +57,9 @@ void flatSurfaceLanes(const float* g, SurfaceLanes& s) {
 #pragma omp simd
   for (int k = 0; k < L; ++k) {
     const int i = s.tri[k];
-    const HitSurface h = surfaceAt<false>(nullptr, glm::vec3(g[3 * i], g[3 * i + 1], g[3 * i + 2]),
-                                          s.ox[k], s.oy[k], s.oz[k], s.dx[k], s.dy[k], s.dz[k],
-                                          s.t[k]);
+    const HitSurface h =
+        surfaceAt<false>(nullptr, glm::vec3(g[3 * i], g[3 * i + 1], g[3 * i + 2]), s.ox[k], s.oy[k],
+                         s.oz[k], s.dx[k], s.dy[k], s.dz[k], s.t[k]);
     s.px[k] = h.px, s.py[k] = h.py, s.pz[k] = h.pz;
     s.nx[k] = h.nx, s.ny[k] = h.ny, s.nz[k] = h.nz;
     s.gx[k] = h.gx, s.gy[k] = h.gy, s.gz[k] = h.gz;
@@ -69,7 +69,8 @@ void flatSurfaceLanes(const float* g, SurfaceLanes& s) {
 
 }  // namespace
 
-void computeSurfaces(const ShadingTriangle* triangles, const glm::vec3* geometric, SurfaceLanes& s) {
+void computeSurfaces(const ShadingTriangle* triangles, const glm::vec3* geometric,
+                     SurfaceLanes& s) {
   if (triangles)
     smoothSurfaceLanes(triangles, s);
   else

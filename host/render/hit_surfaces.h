@@ -41,8 +41,8 @@ struct HitSurface {
 };
 
 template <bool kSmooth>
-inline HitSurface surfaceAt(const ShadingTriangle* smooth, glm::vec3 geometric, float ox,
-                            float oy, float oz, float dx, float dy, float dz, float t) {
+inline HitSurface surfaceAt(const ShadingTriangle* smooth, glm::vec3 geometric, float ox, float oy,
+                            float oz, float dx, float dy, float dz, float t) {
   HitSurface h;
   h.px = ox + t * dx, h.py = oy + t * dy, h.pz = oz + t * dz;
   const float gx = geometric.x, gy = geometric.y, gz = geometric.z;
@@ -96,8 +96,8 @@ void computeSurfaces(const ShadingTriangle* triangles, const glm::vec3* geometri
 
 // surfaceAt for one hit of triangle `tri` (triangles and geometric as for computeSurfaces).
 inline HitSurface surfaceOfHit(const ShadingTriangle* triangles, const glm::vec3* geometric,
-                               int tri, float ox, float oy, float oz, float dx, float dy,
-                               float dz, float t) {
+                               int tri, float ox, float oy, float oz, float dx, float dy, float dz,
+                               float t) {
   return triangles ? surfaceAt<true>(&triangles[tri], geometric[tri], ox, oy, oz, dx, dy, dz, t)
                    : surfaceAt<false>(nullptr, geometric[tri], ox, oy, oz, dx, dy, dz, t);
 }

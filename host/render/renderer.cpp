@@ -126,8 +126,8 @@ void Renderer::traceInBatches(const std::vector<GrRay>& rays, std::vector<GrHit>
   ms += clock.ms();
 }
 
-void Renderer::traceBatched(const std::vector<GrRay>& rays, HitMode mode,
-                            std::vector<GrHit>& hits, RayDiagnostics* diagnostics, double& ms) {
+void Renderer::traceBatched(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
+                            RayDiagnostics* diagnostics, double& ms) {
   traceInBatches(rays, hits, diagnostics, ms,
                  [&](const std::vector<GrRay>& batch, std::vector<GrHit>& out, RayDiagnostics* d) {
                    intersector_.intersect(batch, mode, out, d);
@@ -154,13 +154,15 @@ void Renderer::traceShadows(double& ms) {
     if (light.type == LightType::Directional) {
       traceBatched(rays, HitMode::AnyHit, hits, nullptr, ms);
     } else {  // every ray ends at the light: the intersector may bundle them
-      traceInBatches(rays, hits, nullptr, ms,
-                     [&](const std::vector<GrRay>& batch, std::vector<GrHit>& out, RayDiagnostics*) {
-                       intersector_.intersectTowardsPoint(light.position, batch, HitMode::AnyHit, out);
-                     });
+      traceInBatches(
+          rays, hits, nullptr, ms,
+          [&](const std::vector<GrRay>& batch, std::vector<GrHit>& out, RayDiagnostics*) {
+            intersector_.intersectTowardsPoint(light.position, batch, HitMode::AnyHit, out);
+          });
     }
     if (!all)
-      for (size_t i = 0; i < light_ray_index_.size(); ++i) shadow_hits_[light_ray_index_[i]] = hits[i];
+      for (size_t i = 0; i < light_ray_index_.size(); ++i)
+        shadow_hits_[light_ray_index_[i]] = hits[i];
   }
 }
 
@@ -188,7 +190,8 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
   radiance_.resize(pixels);
 #pragma omp parallel for schedule(static)
   for (int y = 0; y < fh; ++y)
-    std::fill(radiance_.begin() + size_t(y) * fw, radiance_.begin() + size_t(y + 1) * fw, glm::vec3(0.0f));
+    std::fill(radiance_.begin() + size_t(y) * fw, radiance_.begin() + size_t(y + 1) * fw,
+              glm::vec3(0.0f));
   if (settings_.want_aovs || settings_.want_diagnostics) {
     const bool diag = settings_.want_diagnostics;
     PrimaryAovs& a = frame.aovs;
@@ -275,7 +278,8 @@ void Renderer::renderInBands(Frame& frame, const PixelWindow& window, int spp, f
 }
 
 void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
-                          const PixelWindow* window, const std::function<void(int, int)>& progress) {
+                          const PixelWindow* window,
+                          const std::function<void(int, int)>& progress) {
   Stopwatch clock;
   ++frame.passes;
   const int w = settings_.width, h = settings_.height;
@@ -294,17 +298,18 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
     camera_rays.centreWindow(*window, primary_rays_.data());
   } else {
 #pragma omp parallel for schedule(static)
-  for (long long k = 0; k < (long long)rendered; ++k) {
-    const int f = window_pixels_[k], fw = film_window_.width();
-    const int x = film_window_.x0 + f % fw, y = film_window_.y0 + f / fw;
-    const uint32_t p = uint32_t(y) * uint32_t(w) + uint32_t(x);  // the jitter's key: the image's pixel
-    for (int s = 0; s < spp; ++s) {
-      float sx = 0.5f, sy = 0.5f;
-      if (!centre_only) jitter(p, uint32_t(first_sample + s), sx, sy);
-      size_t r = size_t(k) * spp + s;
-      primary_rays_[r] = camera_rays(x, y, sx, sy);
+    for (long long k = 0; k < (long long)rendered; ++k) {
+      const int f = window_pixels_[k], fw = film_window_.width();
+      const int x = film_window_.x0 + f % fw, y = film_window_.y0 + f / fw;
+      const uint32_t p =
+          uint32_t(y) * uint32_t(w) + uint32_t(x);  // the jitter's key: the image's pixel
+      for (int s = 0; s < spp; ++s) {
+        float sx = 0.5f, sy = 0.5f;
+        if (!centre_only) jitter(p, uint32_t(first_sample + s), sx, sy);
+        size_t r = size_t(k) * spp + s;
+        primary_rays_[r] = camera_rays(x, y, sx, sy);
+      }
     }
-  }
   }
   frame.times.generate_ms += clock.ms();
 
@@ -331,7 +336,8 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   }
   const PrimaryPaths primary{spp, weight, order};
   // Every depth's arrays exist before the loop: pointers into them stay valid.
-  if (generations_.size() < size_t(settings_.max_depth) + 2) generations_.resize(settings_.max_depth + 2);
+  if (generations_.size() < size_t(settings_.max_depth) + 2)
+    generations_.resize(settings_.max_depth + 2);
   size_t shadow_total = 0;
   int depths = 0;
   for (int depth = 0; !rays->empty() && depth <= settings_.max_depth; ++depth) {
@@ -340,8 +346,10 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
       frame.rays.primary += rays->size();
     } else {
       for (const PathRay& path : *paths)
-        if (path.kind == RayKind::Reflection) ++frame.rays.reflection;
-        else ++frame.rays.refraction;
+        if (path.kind == RayKind::Reflection)
+          ++frame.rays.reflection;
+        else
+          ++frame.rays.refraction;
     }
     RayDiagnostics* diag = first && aov_pass && settings_.want_diagnostics ? &diagnostics : nullptr;
     std::vector<GrHit>& hits = generations_[depth].hits;
@@ -479,120 +487,123 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
 
 #pragma omp parallel for schedule(dynamic, 1)
   for (long long chunk = 0; chunk < (long long)chunks; ++chunk) {
-  Spawned& out = spawned_[chunk];
-  out.shadow_count = 0;
-  out.ray_count = 0;
-  out.light_lanes.resize(lights_.size());
-  SurfaceLanes lanes;
-  const size_t chunk_begin = size_t(chunk) * kShadeChunkRays;
-  const size_t chunk_end = std::min(n, chunk_begin + kShadeChunkRays);
-  // The primary generation in its shading order: sample `sample` of the pixel at
-  // `position` of the order (j / spp and j % spp, counted along instead of divided).
-  const size_t spp = size_t(primary.spp);
-  size_t position = chunk_begin / spp, sample = chunk_begin % spp;
-  // The hits in blocks of 16 (a miss is done at once): their surfaces and light
-  // directions in lanes, then each hit's shading in order.
-  size_t block_ray[kSurfaceLanes];
-  PathRay block_path[kSurfaceLanes];
-  for (size_t j = chunk_begin; j < chunk_end;) {
-    int count = 0;
-    for (; count < kSurfaceLanes && j < chunk_end; ++j) {
-      const size_t pixel_index = paths ? 0 : primary.order ? size_t(primary.order[position]) : position;
-      const size_t i = paths || !primary.order ? j : pixel_index * spp + sample;
-      const PathRay path = paths ? (*paths)[i]
-                                 : PathRay{window_pixels_[pixel_index], glm::vec3(primary.weight),
-                                           RayKind::Primary};
-      sample = sample + 1 == spp ? 0 : sample + 1;
-      position += sample == 0;
-      const GrHit& hit = g.hits[i];
-      if (hit.prim < 0) {
-        local[i] = path.weight * settings_.background;
-        continue;
-      }
-      const GrRay& ray = rays[i];
-      const int k = count++;
-      block_ray[k] = i;
-      block_path[k] = path;
-      lanes.ox[k] = ray.ox, lanes.oy[k] = ray.oy, lanes.oz[k] = ray.oz;
-      lanes.dx[k] = ray.dx, lanes.dy[k] = ray.dy, lanes.dz[k] = ray.dz;
-      lanes.t[k] = hit.t;
-      lanes.tri[k] = hit.prim;
-    }
-    if (count == 0) continue;
-    for (int k = count; k < kSurfaceLanes; ++k) {  // a block's last lanes: copies of lane 0
-      lanes.ox[k] = lanes.ox[0], lanes.oy[k] = lanes.oy[0], lanes.oz[k] = lanes.oz[0];
-      lanes.dx[k] = lanes.dx[0], lanes.dy[k] = lanes.dy[0], lanes.dz[k] = lanes.dz[0];
-      lanes.t[k] = lanes.t[0], lanes.tri[k] = lanes.tri[0];
-    }
-    computeSurfaces(smooth_triangles, geometric_normals_.data(), lanes);
-    for (size_t l = 0; l < lights_.size(); ++l)
-      computeLightLanes(lights_[l], lanes, out.light_lanes[l]);
-  for (int k = 0; k < count; ++k) {
-    const size_t i = block_ray[k];
-    const PathRay& path = block_path[k];
-    const GrHit& hit = g.hits[i];
-    glm::vec3 d(lanes.dx[k], lanes.dy[k], lanes.dz[k]);
-    const int tri = hit.prim;
-    const Material& mat = scene_.materials[scene_.material_of[tri]];
-    const SurfaceTerms& terms = material_terms_[scene_.material_of[tri]];
-    glm::vec3 weight = path.weight;
-    const glm::vec3 p(lanes.px[k], lanes.py[k], lanes.pz[k]);
-    const glm::vec3 ng(lanes.gx[k], lanes.gy[k], lanes.gz[k]);
-    const glm::vec3 n(lanes.nx[k], lanes.ny[k], lanes.nz[k]);
-    const bool backface = lanes.backface[k];
-    // Beer-Lambert absorption inside a transmissive volume (KHR_materials_volume).
-    if (backface && mat.transmission > 0.0f && mat.attenuation_distance > 0.0f)
-      weight *= glm::pow(glm::max(mat.attenuation_color, glm::vec3(1e-6f)),
-                         glm::vec3(hit.t / mat.attenuation_distance));
-    local[i] = weight * (mat.emissive + settings_.ambient * terms.diffuse);
-    const glm::vec3 origin(lanes.ox[k], lanes.oy[k], lanes.oz[k]);
-    // How far secondary origins leave the surface, and where shadow rays start.
-    const float offset_distance = rayOffsetDistance(p, origin, settings_.ray_offset);
-    glm::vec3 above = offsetRayOrigin(p, ng, offset_distance, settings_.ray_offset);
-    for (size_t l = 0; l < lights_.size(); ++l) {
-      const LightLanes& light = out.light_lanes[l];
-      if (!light.lit[k]) continue;
-      const glm::vec3 to_light(light.lx[k], light.ly[k], light.lz[k]);
-      const glm::vec3 e(light.ex[k], light.ey[k], light.ez[k]);
-      const float cos_theta = light.cos_theta[k];
-      glm::vec3 r = reflectDirection(-to_light, n);
-      float rv = std::max(0.0f, glm::dot(r, -d));
-      // pow(0, e) is 0 for the exponent (>= 1): no call for the half turned away.
-      const float highlight = rv > 0.0f ? std::pow(rv, terms.phong_exponent) : 0.0f;
-      glm::vec3 direct = terms.diffuse / kPi * e * cos_theta + terms.specular * e * highlight;
-      glm::vec3 contribution = weight * direct;
-      if (glm::length(contribution) == 0.0f) continue;
-      const size_t s = nextSlot(out.shadow_rays, out.shadows, out.shadow_count);
-      out.shadow_rays[s] = makeRay(above, to_light, light.distance[k], offset_distance);
-      out.shadows[s] = ShadowRay{path.pixel, int(l), contribution};
-    }
-    if (!spawn) continue;
-    glm::vec3 reflect_weight = terms.mirror;
-    if (terms.transmission > 0.0f) {
-      float eta = backface ? mat.ior : 1.0f / mat.ior;
-      float f = fresnelDielectric(-glm::dot(d, n), eta);
-      glm::vec3 t_dir;
-      glm::vec3 t_weight = weight * terms.transmission * (1.0f - f) * mat.base_color;
-      if (f < 1.0f && refractDirection(d, n, eta, t_dir) && glm::dot(t_dir, ng) < 0.0f) {
-        if (worthTracing(t_weight)) {
-          const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
-          out.rays[s] = makeRay(offsetRayOrigin(p, -ng, offset_distance, settings_.ray_offset), t_dir, kInf);
-          out.paths[s] = PathRay{path.pixel, t_weight, RayKind::Refraction};
+    Spawned& out = spawned_[chunk];
+    out.shadow_count = 0;
+    out.ray_count = 0;
+    out.light_lanes.resize(lights_.size());
+    SurfaceLanes lanes;
+    const size_t chunk_begin = size_t(chunk) * kShadeChunkRays;
+    const size_t chunk_end = std::min(n, chunk_begin + kShadeChunkRays);
+    // The primary generation in its shading order: sample `sample` of the pixel at
+    // `position` of the order (j / spp and j % spp, counted along instead of divided).
+    const size_t spp = size_t(primary.spp);
+    size_t position = chunk_begin / spp, sample = chunk_begin % spp;
+    // The hits in blocks of 16 (a miss is done at once): their surfaces and light
+    // directions in lanes, then each hit's shading in order.
+    size_t block_ray[kSurfaceLanes];
+    PathRay block_path[kSurfaceLanes];
+    for (size_t j = chunk_begin; j < chunk_end;) {
+      int count = 0;
+      for (; count < kSurfaceLanes && j < chunk_end; ++j) {
+        const size_t pixel_index = paths           ? 0
+                                   : primary.order ? size_t(primary.order[position])
+                                                   : position;
+        const size_t i = paths || !primary.order ? j : pixel_index * spp + sample;
+        const PathRay path = paths ? (*paths)[i]
+                                   : PathRay{window_pixels_[pixel_index], glm::vec3(primary.weight),
+                                             RayKind::Primary};
+        sample = sample + 1 == spp ? 0 : sample + 1;
+        position += sample == 0;
+        const GrHit& hit = g.hits[i];
+        if (hit.prim < 0) {
+          local[i] = path.weight * settings_.background;
+          continue;
         }
-      } else {
-        f = 1.0f;  // total internal reflection
+        const GrRay& ray = rays[i];
+        const int k = count++;
+        block_ray[k] = i;
+        block_path[k] = path;
+        lanes.ox[k] = ray.ox, lanes.oy[k] = ray.oy, lanes.oz[k] = ray.oz;
+        lanes.dx[k] = ray.dx, lanes.dy[k] = ray.dy, lanes.dz[k] = ray.dz;
+        lanes.t[k] = hit.t;
+        lanes.tri[k] = hit.prim;
       }
-      reflect_weight += glm::vec3(terms.transmission * f);
+      if (count == 0) continue;
+      for (int k = count; k < kSurfaceLanes; ++k) {  // a block's last lanes: copies of lane 0
+        lanes.ox[k] = lanes.ox[0], lanes.oy[k] = lanes.oy[0], lanes.oz[k] = lanes.oz[0];
+        lanes.dx[k] = lanes.dx[0], lanes.dy[k] = lanes.dy[0], lanes.dz[k] = lanes.dz[0];
+        lanes.t[k] = lanes.t[0], lanes.tri[k] = lanes.tri[0];
+      }
+      computeSurfaces(smooth_triangles, geometric_normals_.data(), lanes);
+      for (size_t l = 0; l < lights_.size(); ++l)
+        computeLightLanes(lights_[l], lanes, out.light_lanes[l]);
+      for (int k = 0; k < count; ++k) {
+        const size_t i = block_ray[k];
+        const PathRay& path = block_path[k];
+        const GrHit& hit = g.hits[i];
+        glm::vec3 d(lanes.dx[k], lanes.dy[k], lanes.dz[k]);
+        const int tri = hit.prim;
+        const Material& mat = scene_.materials[scene_.material_of[tri]];
+        const SurfaceTerms& terms = material_terms_[scene_.material_of[tri]];
+        glm::vec3 weight = path.weight;
+        const glm::vec3 p(lanes.px[k], lanes.py[k], lanes.pz[k]);
+        const glm::vec3 ng(lanes.gx[k], lanes.gy[k], lanes.gz[k]);
+        const glm::vec3 n(lanes.nx[k], lanes.ny[k], lanes.nz[k]);
+        const bool backface = lanes.backface[k];
+        // Beer-Lambert absorption inside a transmissive volume (KHR_materials_volume).
+        if (backface && mat.transmission > 0.0f && mat.attenuation_distance > 0.0f)
+          weight *= glm::pow(glm::max(mat.attenuation_color, glm::vec3(1e-6f)),
+                             glm::vec3(hit.t / mat.attenuation_distance));
+        local[i] = weight * (mat.emissive + settings_.ambient * terms.diffuse);
+        const glm::vec3 origin(lanes.ox[k], lanes.oy[k], lanes.oz[k]);
+        // How far secondary origins leave the surface, and where shadow rays start.
+        const float offset_distance = rayOffsetDistance(p, origin, settings_.ray_offset);
+        glm::vec3 above = offsetRayOrigin(p, ng, offset_distance, settings_.ray_offset);
+        for (size_t l = 0; l < lights_.size(); ++l) {
+          const LightLanes& light = out.light_lanes[l];
+          if (!light.lit[k]) continue;
+          const glm::vec3 to_light(light.lx[k], light.ly[k], light.lz[k]);
+          const glm::vec3 e(light.ex[k], light.ey[k], light.ez[k]);
+          const float cos_theta = light.cos_theta[k];
+          glm::vec3 r = reflectDirection(-to_light, n);
+          float rv = std::max(0.0f, glm::dot(r, -d));
+          // pow(0, e) is 0 for the exponent (>= 1): no call for the half turned away.
+          const float highlight = rv > 0.0f ? std::pow(rv, terms.phong_exponent) : 0.0f;
+          glm::vec3 direct = terms.diffuse / kPi * e * cos_theta + terms.specular * e * highlight;
+          glm::vec3 contribution = weight * direct;
+          if (glm::length(contribution) == 0.0f) continue;
+          const size_t s = nextSlot(out.shadow_rays, out.shadows, out.shadow_count);
+          out.shadow_rays[s] = makeRay(above, to_light, light.distance[k], offset_distance);
+          out.shadows[s] = ShadowRay{path.pixel, int(l), contribution};
+        }
+        if (!spawn) continue;
+        glm::vec3 reflect_weight = terms.mirror;
+        if (terms.transmission > 0.0f) {
+          float eta = backface ? mat.ior : 1.0f / mat.ior;
+          float f = fresnelDielectric(-glm::dot(d, n), eta);
+          glm::vec3 t_dir;
+          glm::vec3 t_weight = weight * terms.transmission * (1.0f - f) * mat.base_color;
+          if (f < 1.0f && refractDirection(d, n, eta, t_dir) && glm::dot(t_dir, ng) < 0.0f) {
+            if (worthTracing(t_weight)) {
+              const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
+              out.rays[s] = makeRay(offsetRayOrigin(p, -ng, offset_distance, settings_.ray_offset),
+                                    t_dir, kInf);
+              out.paths[s] = PathRay{path.pixel, t_weight, RayKind::Refraction};
+            }
+          } else {
+            f = 1.0f;  // total internal reflection
+          }
+          reflect_weight += glm::vec3(terms.transmission * f);
+        }
+        if (glm::length(reflect_weight) > 0.0f && worthTracing(weight * reflect_weight)) {
+          glm::vec3 r = reflectDirection(d, n);
+          if (glm::dot(r, ng) <= 0.0f) r = reflectDirection(d, ng);  // keep it above the surface
+          const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
+          out.rays[s] = makeRay(above, r, kInf);
+          out.paths[s] = PathRay{path.pixel, weight * reflect_weight, RayKind::Reflection};
+        }
+      }
     }
-    if (glm::length(reflect_weight) > 0.0f && worthTracing(weight * reflect_weight)) {
-      glm::vec3 r = reflectDirection(d, n);
-      if (glm::dot(r, ng) <= 0.0f) r = reflectDirection(d, ng);  // keep it above the surface
-      const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
-      out.rays[s] = makeRay(above, r, kInf);
-      out.paths[s] = PathRay{path.pixel, weight * reflect_weight, RayKind::Reflection};
-    }
-  }
-  }
   }
   frame.times.shade_ms += clock.ms();
 

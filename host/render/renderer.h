@@ -28,12 +28,12 @@ constexpr size_t kMaxPassRays = size_t(1) << 18;
 struct RenderSettings {
   int width = 640;
   int height = 480;
-  int spp = 1;            // samples per pixel: jittered inside the pixel when > 1
-  int max_depth = 5;      // reflection/refraction bounces after the primary hit
-  bool primary_only = false;  // primary rays with headlight shading (the paper's measurement)
-  glm::vec3 background{0.0f};  // colour of rays that miss (black, as in the paper)
-  float ambient = 0.05f;  // ambient radiance factor: ambient * diffuse albedo, lit or not
-  RayOffset ray_offset;   // how secondary ray origins leave the surface
+  int spp = 1;                    // samples per pixel: jittered inside the pixel when > 1
+  int max_depth = 5;              // reflection/refraction bounces after the primary hit
+  bool primary_only = false;      // primary rays with headlight shading (the paper's measurement)
+  glm::vec3 background{0.0f};     // colour of rays that miss (black, as in the paper)
+  float ambient = 0.05f;          // ambient radiance factor: ambient * diffuse albedo, lit or not
+  RayOffset ray_offset;           // how secondary ray origins leave the surface
   bool want_aovs = true;          // fill the depth / primid / normal AOVs of primary rays
   bool want_diagnostics = false;  // fill tests / PE / list-length AOVs of primary rays
   PixelWindow crop;  // render only these pixels (the film and AOVs hold the window alone)
@@ -57,11 +57,11 @@ struct RayCounts {
 
 // Primary-ray AOVs (sample 0 of each pixel).
 struct PrimaryAovs {
-  std::vector<float> depth;   // t of the primary hit (unit direction), -1 on a miss
-  std::vector<float> primid;  // global triangle index, -1 on a miss
-  std::vector<float> normal;  // geometric normal (xyz), 0 on a miss
-  std::vector<float> tests;   // ray-triangle tests of the primary ray
-  std::vector<float> pe;      // winning PE, -1 on a miss
+  std::vector<float> depth;        // t of the primary hit (unit direction), -1 on a miss
+  std::vector<float> primid;       // global triangle index, -1 on a miss
+  std::vector<float> normal;       // geometric normal (xyz), 0 on a miss
+  std::vector<float> tests;        // ray-triangle tests of the primary ray
+  std::vector<float> pe;           // winning PE, -1 on a miss
   std::vector<float> list_length;  // PEs in the traversal list
 };
 
@@ -104,12 +104,12 @@ class Renderer {
   };
   struct ShadowRay {
     int pixel;
-    int light;  // index into lights_
+    int light;           // index into lights_
     glm::vec3 radiance;  // added to the pixel if the shadow ray reaches the light
   };
   // One batch of at most kMaxBatchRays rays: its hits (and diagnostics when asked).
-  using BatchTrace = std::function<void(const std::vector<GrRay>&, std::vector<GrHit>&,
-                                        RayDiagnostics*)>;
+  using BatchTrace =
+      std::function<void(const std::vector<GrRay>&, std::vector<GrHit>&, RayDiagnostics*)>;
   // Traces `rays` through `trace` in batches of at most kMaxBatchRays, bounding device
   // memory; hits (and diagnostics) come back in ray order.
   void traceInBatches(const std::vector<GrRay>& rays, std::vector<GrHit>& hits,
@@ -120,8 +120,8 @@ class Renderer {
   // path starting with throughput `weight`, through all bounces into radiance_. `window`
   // (the pixels as a rectangle) marks a pass of whole rows; with sample 0 it writes the
   // AOVs of its pixels.
-  void renderPass(Frame& frame, int spp, int first_sample, float weight,
-                  const PixelWindow* window, const std::function<void(int, int)>& progress);
+  void renderPass(Frame& frame, int spp, int first_sample, float weight, const PixelWindow* window,
+                  const std::function<void(int, int)>& progress);
   // renderPass over `window` in bands of whole rows of at most max_pass_rays primary rays
   // (at least one row each), window_pixels_ set to each band's pixels.
   void renderInBands(Frame& frame, const PixelWindow& window, int spp, float weight,
@@ -177,10 +177,10 @@ class Renderer {
   Camera camera_;
   Intersector& intersector_;
   RenderSettings settings_;
-  std::vector<glm::vec3> geometric_normals_;  // per triangle, unit
+  std::vector<glm::vec3> geometric_normals_;        // per triangle, unit
   std::vector<ShadingTriangle> shading_triangles_;  // per triangle
-  std::vector<Light> lights_;                 // the scene's, or the default light
-  std::vector<SurfaceTerms> material_terms_;  // per material
+  std::vector<Light> lights_;                       // the scene's, or the default light
+  std::vector<SurfaceTerms> material_terms_;        // per material
 
   // Rays one chunk of a generation spawns while shading; concatenated in chunk order
   // afterwards, so the order is the rays' whatever thread shaded which chunk.
@@ -215,7 +215,7 @@ class Renderer {
   std::vector<GrRay> shadow_rays_;
   std::vector<ShadowRay> shadows_;
   std::vector<GrHit> shadow_hits_;
-  std::vector<GrRay> light_rays_;       // one light's shadow rays (several lights)
+  std::vector<GrRay> light_rays_;        // one light's shadow rays (several lights)
   std::vector<size_t> light_ray_index_;  // ... and their indices in the shadow rays
   std::vector<Spawned> spawned_;
   std::vector<size_t> chunk_offsets_;  // where each chunk's output starts (concatenateChunks)
@@ -227,9 +227,9 @@ class Renderer {
   // image width it was made for; width 0 when it holds something else.
   PixelWindow window_pixels_band_;
   int window_pixels_width_ = 0;
-  std::vector<int> block_order_;    // the window's pixels in 4x4 blocks (pixel_blocks.h)
+  std::vector<int> block_order_;  // the window's pixels in 4x4 blocks (pixel_blocks.h)
   int block_order_width_ = 0, block_order_height_ = 0;  // the window block_order_ is for
-  std::vector<glm::vec3> radiance_;  // per film pixel accumulator
+  std::vector<glm::vec3> radiance_;                     // per film pixel accumulator
 };
 
 }  // namespace gridrt

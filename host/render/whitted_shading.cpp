@@ -15,8 +15,8 @@ SurfaceTerms surfaceTerms(const Material& m) {
   s.diffuse = m.base_color * (1.0f - metallic) * (1.0f - transmission);
   s.specular = glm::mix(glm::vec3(0.04f), m.base_color, metallic) * (1.0f - roughness);
   float alpha = roughness * roughness;
-  s.phong_exponent = alpha > 0.0f ? std::clamp(2.0f / (alpha * alpha) - 2.0f, 1.0f, 10000.0f)
-                                  : 10000.0f;
+  s.phong_exponent =
+      alpha > 0.0f ? std::clamp(2.0f / (alpha * alpha) - 2.0f, 1.0f, 10000.0f) : 10000.0f;
   s.mirror = m.base_color * metallic * (1.0f - roughness) * (1.0f - roughness);
   s.transmission = transmission * (1.0f - metallic);
   return s;

@@ -14,11 +14,11 @@ namespace gridrt {
 
 // How a material splits incoming light, derived from its glTF parameters.
 struct SurfaceTerms {
-  glm::vec3 diffuse;      // Lambert albedo: base * (1 - metallic) * (1 - transmission)
-  glm::vec3 specular;     // Phong highlight colour: mix(0.04, base, metallic) * (1 - roughness)
-  float phong_exponent;   // 2 / alpha^2 - 2 with alpha = roughness^2, in [1, 10000]
-  glm::vec3 mirror;       // perfect-mirror reflectance: base * metallic * (1 - roughness)^2
-  float transmission;     // share refracted (Fresnel-weighted) by a dielectric
+  glm::vec3 diffuse;     // Lambert albedo: base * (1 - metallic) * (1 - transmission)
+  glm::vec3 specular;    // Phong highlight colour: mix(0.04, base, metallic) * (1 - roughness)
+  float phong_exponent;  // 2 / alpha^2 - 2 with alpha = roughness^2, in [1, 10000]
+  glm::vec3 mirror;      // perfect-mirror reflectance: base * metallic * (1 - roughness)^2
+  float transmission;    // share refracted (Fresnel-weighted) by a dielectric
 };
 
 SurfaceTerms surfaceTerms(const Material& m);
@@ -56,8 +56,9 @@ constexpr float kHitPointErrorUlps = 64.0f;
 // call for finite x (the shading loop takes three per secondary origin).
 inline float nextFloat(float x, bool up) {
   if (!std::isfinite(x)) return std::nextafter(x, up ? INFINITY : -INFINITY);
-  if (x == 0.0f) return up ? std::numeric_limits<float>::denorm_min()
-                           : -std::numeric_limits<float>::denorm_min();
+  if (x == 0.0f)
+    return up ? std::numeric_limits<float>::denorm_min()
+              : -std::numeric_limits<float>::denorm_min();
   uint32_t bits;
   std::memcpy(&bits, &x, sizeof bits);
   bits = (x > 0.0f) == up ? bits + 1 : bits - 1;  // the magnitude one ulp up or down

@@ -6,8 +6,8 @@ namespace gridrt {
 namespace shapes {
 namespace {
 
-void addTriangle(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 na,
-                 glm::vec3 nb, glm::vec3 nc, int material) {
+void addTriangle(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 na, glm::vec3 nb,
+                 glm::vec3 nc, int material) {
   scene.positions.insert(scene.positions.end(), {a, b, c});
   scene.normals.insert(scene.normals.end(), {na, nb, nc});
   scene.material_of.push_back(material);
@@ -142,9 +142,9 @@ Scene makeDefaultScene() {
   const float o = kSeamOverlap;
   const float wide = w + o, tall = h / 2 + o, deep = (d + o) / 2, mid_z = -(d + o) / 2;
   int white = addMaterial(scene, diffuse("white", glm::vec3(0.75f), 0.9f));
-  addRect(scene, {0, 0, mid_z}, Z * deep, X * wide, white);     // floor
-  addRect(scene, {0, h, mid_z}, X * wide, Z * deep, white);     // ceiling
-  addRect(scene, {0, h / 2, -d}, X * wide, Y * tall, white);    // back wall
+  addRect(scene, {0, 0, mid_z}, Z * deep, X * wide, white);   // floor
+  addRect(scene, {0, h, mid_z}, X * wide, Z * deep, white);   // ceiling
+  addRect(scene, {0, h / 2, -d}, X * wide, Y * tall, white);  // back wall
   int red = addMaterial(scene, diffuse("red", {0.63f, 0.065f, 0.05f}, 0.9f));
   addRect(scene, {-w, h / 2, mid_z}, Y * tall, Z * deep, red);  // left wall
   int green = addMaterial(scene, diffuse("green", {0.14f, 0.45f, 0.091f}, 0.9f));

@@ -36,8 +36,7 @@ void addBox(Scene& scene, glm::vec3 centre, glm::vec3 half_extents, float yaw_ra
 
 // UV sphere: `rings` latitude bands, `segments` longitude slices, smooth outward normals,
 // 2 * segments * (rings - 1) triangles.
-void addSphere(Scene& scene, glm::vec3 centre, float radius, int segments, int rings,
-               int material);
+void addSphere(Scene& scene, glm::vec3 centre, float radius, int segments, int rings, int material);
 
 // Camera-to-world matrix of a camera at eye looking at target (+Y up as far as possible).
 glm::mat4 lookAtWorld(glm::vec3 eye, glm::vec3 target, glm::vec3 up = {0.0f, 1.0f, 0.0f});

@@ -75,7 +75,7 @@ std::string named(const std::string& kind, size_t index, const std::string& name
 // (always absolute here, so the "./" attempt never matches and is refused silently).
 
 struct FileGuard {
-  std::string base_dir;  // absolute, exactly as given to tinygltf; empty: no external files
+  std::string base_dir;   // absolute, exactly as given to tinygltf; empty: no external files
   std::string rejection;  // the first refused URI and why, reported instead of tinygltf's error
 };
 
@@ -97,8 +97,7 @@ bool looksAbsolute(const std::string& uri) {
 }
 
 bool isInside(const fs::path& inner, const fs::path& outer) {
-  return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first ==
-         outer.end();
+  return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first == outer.end();
 }
 
 // The URI part of a joined path, or nullopt if the path is not under base_dir.
@@ -158,8 +157,7 @@ bool guardedReadFile(std::vector<unsigned char>* out, std::string* err, const st
   return true;
 }
 
-bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&,
-                 void*) {
+bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
   if (err) *err += "the loader never writes files";
   return false;
 }
@@ -206,8 +204,10 @@ void checkJsonDepth(std::string_view json, const std::string& label) {
   for (size_t i = 0; i < json.size(); ++i) {
     char c = json[i];
     if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
     } else if (c == '"') {
       in_string = true;
     } else if (c == '[' || c == '{') {
@@ -251,18 +251,17 @@ tinygltf::Model parseModel(const unsigned char* data, size_t size, const std::st
 
   tinygltf::TinyGLTF parser;
   parser.SetImageLoader(ignoreImage, nullptr);
-  parser.SetFsCallbacks(
-      {guardedFileExists, identityPath, guardedReadFile, refuseWrite, &guard});
+  parser.SetFsCallbacks({guardedFileExists, identityPath, guardedReadFile, refuseWrite, &guard});
 
   tinygltf::Model model;
   std::string err, warn;
   bool ok = false;
   try {
     const auto length = static_cast<unsigned int>(size);
-    ok = binary ? parser.LoadBinaryFromMemory(&model, &err, &warn, data, length, guard.base_dir)
-                : parser.LoadASCIIFromString(&model, &err, &warn,
-                                             reinterpret_cast<const char*>(data), length,
-                                             guard.base_dir);
+    ok = binary
+             ? parser.LoadBinaryFromMemory(&model, &err, &warn, data, length, guard.base_dir)
+             : parser.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(data),
+                                          length, guard.base_dir);
   } catch (const std::exception& e) {
     fail(label, std::string("malformed glTF: ") + e.what());
   }
@@ -290,37 +289,56 @@ void checkRequiredExtensions(const tinygltf::Model& model, const std::string& la
 size_t componentSize(int component_type) {
   switch (component_type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;  // INT and DOUBLE are not glTF 2.0 accessor types
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;  // INT and DOUBLE are not glTF 2.0 accessor types
   }
 }
 
 const char* componentName(int component_type) {
   switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
-    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
-    default: return "an invalid component type";
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+      return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+      return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return "FLOAT";
+    default:
+      return "an invalid component type";
   }
 }
 
 const char* typeName(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-    case TINYGLTF_TYPE_VEC2: return "VEC2";
-    case TINYGLTF_TYPE_VEC3: return "VEC3";
-    case TINYGLTF_TYPE_VEC4: return "VEC4";
-    case TINYGLTF_TYPE_MAT2: return "MAT2";
-    case TINYGLTF_TYPE_MAT3: return "MAT3";
-    case TINYGLTF_TYPE_MAT4: return "MAT4";
-    default: return "?";
+    case TINYGLTF_TYPE_SCALAR:
+      return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+      return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+      return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+      return "VEC4";
+    case TINYGLTF_TYPE_MAT2:
+      return "MAT2";
+    case TINYGLTF_TYPE_MAT3:
+      return "MAT3";
+    case TINYGLTF_TYPE_MAT4:
+      return "MAT4";
+    default:
+      return "?";
   }
 }
 
@@ -342,7 +360,8 @@ struct AccessorView {
   uint32_t index(size_t i) const {
     const unsigned char* p = data + i * stride;
     switch (component_type) {
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return p[0];
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
         uint16_t v;
         std::memcpy(&v, p, 2);
@@ -401,8 +420,7 @@ AccessorView viewAccessor(const tinygltf::Model& model, int index, const std::st
   if (!end || *end > view.byteLength)
     fail(label, where + ": " + std::to_string(acc.count) + " elements at offset " +
                     std::to_string(acc.byteOffset) + " with stride " + std::to_string(stride) +
-                    " exceed " + view_name + " of " + std::to_string(view.byteLength) +
-                    " bytes");
+                    " exceed " + view_name + " of " + std::to_string(view.byteLength) + " bytes");
 
   AccessorView out;
   out.data = buffer.data() + view.byteOffset + acc.byteOffset;
@@ -554,9 +572,8 @@ const tinygltf::Value& extension(const tinygltf::ExtensionMap& map, const char* 
 
 bool usesTexture(const tinygltf::Material& m) {
   if (m.pbrMetallicRoughness.baseColorTexture.index >= 0 ||
-      m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 ||
-      m.normalTexture.index >= 0 || m.occlusionTexture.index >= 0 ||
-      m.emissiveTexture.index >= 0)
+      m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || m.normalTexture.index >= 0 ||
+      m.occlusionTexture.index >= 0 || m.emissiveTexture.index >= 0)
     return true;
   // Material extensions name their textures "...Texture" (transmissionTexture, ...).
   for (const auto& [name, value] : m.extensions)
@@ -575,8 +592,8 @@ Material convertMaterial(const tinygltf::Material& m, size_t index) {
   out.roughness = float(pbr.roughnessFactor);
   out.double_sided = m.doubleSided;
 
-  out.transmission = float(numberOr(extension(m.extensions, "KHR_materials_transmission"),
-                                    "transmissionFactor", 0.0));
+  out.transmission = float(
+      numberOr(extension(m.extensions, "KHR_materials_transmission"), "transmissionFactor", 0.0));
   out.ior = float(numberOr(extension(m.extensions, "KHR_materials_ior"), "ior", 1.5));
 
   const tinygltf::Value& volume = extension(m.extensions, "KHR_materials_volume");
@@ -588,8 +605,8 @@ Material convertMaterial(const tinygltf::Material& m, size_t index) {
   const double strength =
       numberOr(extension(m.extensions, "KHR_materials_emissive_strength"), "emissiveStrength", 1.0);
   if (m.emissiveFactor.size() == 3)
-    out.emissive = glm::vec3(glm::dvec3(m.emissiveFactor[0], m.emissiveFactor[1],
-                                        m.emissiveFactor[2]) * strength);
+    out.emissive = glm::vec3(
+        glm::dvec3(m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]) * strength);
   return out;
 }
 
@@ -600,16 +617,21 @@ std::optional<Light> convertLight(const tinygltf::Light& l, const glm::dmat4& wo
                                   const std::string& where, const std::string& label,
                                   std::vector<std::string>& warnings) {
   Light out;
-  if (l.type == "point") out.type = LightType::Point;
-  else if (l.type == "spot") out.type = LightType::Spot;
-  else if (l.type == "directional") out.type = LightType::Directional;
+  if (l.type == "point")
+    out.type = LightType::Point;
+  else if (l.type == "spot")
+    out.type = LightType::Spot;
+  else if (l.type == "directional")
+    out.type = LightType::Directional;
   else {
     warnings.push_back(where + ": light type '" + l.type + "' is not supported; ignored");
     return std::nullopt;
   }
   // tinygltf leaves `color` empty when absent; the spec default is white.
-  if (l.color.size() == 3) out.color = {l.color[0], l.color[1], l.color[2]};
-  else if (!l.color.empty()) fail(label, where + ": light color must have 3 numbers");
+  if (l.color.size() == 3)
+    out.color = {l.color[0], l.color[1], l.color[2]};
+  else if (!l.color.empty())
+    fail(label, where + ": light color must have 3 numbers");
   out.intensity = float(l.intensity);
   out.range = float(l.range);
   out.inner_cone = float(l.spot.innerConeAngle);
@@ -754,8 +776,8 @@ class SceneBuilder {
     if (node.mesh >= 0) addMesh(node.mesh, world, index);
     if (node.camera >= 0) {
       if (size_t(node.camera) >= model_.cameras.size())
-        fail(label_, nodeName(index) + ": camera " + std::to_string(node.camera) +
-                         " does not exist");
+        fail(label_,
+             nodeName(index) + ": camera " + std::to_string(node.camera) + " does not exist");
       camera_nodes_.push_back({index, world});
     }
     addLight(node, index, world);
@@ -777,13 +799,12 @@ class SceneBuilder {
 
   void addMesh(int mesh_index, const glm::dmat4& world, int node_index) {
     if (size_t(mesh_index) >= model_.meshes.size())
-      fail(label_, nodeName(node_index) + ": mesh " + std::to_string(mesh_index) +
-                       " does not exist");
+      fail(label_,
+           nodeName(node_index) + ": mesh " + std::to_string(mesh_index) + " does not exist");
     const tinygltf::Mesh& mesh = model_.meshes[size_t(mesh_index)];
     for (size_t p = 0; p < mesh.primitives.size(); ++p)
       addPrimitive(mesh.primitives[p],
-                   named("mesh", size_t(mesh_index), mesh.name) + " primitive " +
-                       std::to_string(p),
+                   named("mesh", size_t(mesh_index), mesh.name) + " primitive " + std::to_string(p),
                    world);
   }
 
@@ -919,17 +940,16 @@ class SceneBuilder {
             model_.cameras[size_t(model_.nodes[size_t(c.node)].camera)].name;
         if (!chosen && (camera_name == options_.camera_name || node_name == options_.camera_name))
           chosen = &c;
-        available += (available.empty() ? "'" : ", '") + camera_name + "' (node '" +
-                     node_name + "')";
+        available +=
+            (available.empty() ? "'" : ", '") + camera_name + "' (node '" + node_name + "')";
       }
       if (!chosen)
         fail(label_, "camera '" + options_.camera_name + "' not found; available: " + available);
     }
     const tinygltf::Node& node = model_.nodes[size_t(chosen->node)];
-    scene_.camera = convertCamera(model_.cameras[size_t(node.camera)], chosen->world,
-                                  nodeName(chosen->node) + " camera " +
-                                      std::to_string(node.camera),
-                                  label_);
+    scene_.camera =
+        convertCamera(model_.cameras[size_t(node.camera)], chosen->world,
+                      nodeName(chosen->node) + " camera " + std::to_string(node.camera), label_);
     scene_.has_camera = true;
   }
 

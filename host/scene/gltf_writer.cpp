@@ -72,9 +72,8 @@ void checkConsistent(const Scene& scene) {
   for (size_t t = 0; t < n; ++t) {
     int m = scene.material_of[t];
     if (m < 0 || static_cast<size_t>(m) >= scene.materials.size())
-      throw SceneError("cannot write glTF: triangle " + std::to_string(t) +
-                       " has material " + std::to_string(m) + " of " +
-                       std::to_string(scene.materials.size()));
+      throw SceneError("cannot write glTF: triangle " + std::to_string(t) + " has material " +
+                       std::to_string(m) + " of " + std::to_string(scene.materials.size()));
   }
 }
 
@@ -109,15 +108,15 @@ tinygltf::Material toGltf(const Scene& scene, int index, tinygltf::Model& model)
   float peak = std::max({m.emissive.x, m.emissive.y, m.emissive.z});
   if (peak > 1.0f) {
     out.emissiveFactor = tidy(m.emissive / peak);
-    out.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(
-        tinygltf::Value::Object{{"emissiveStrength", number(peak)}});
+    out.extensions["KHR_materials_emissive_strength"] =
+        tinygltf::Value(tinygltf::Value::Object{{"emissiveStrength", number(peak)}});
     useExtension(model, "KHR_materials_emissive_strength");
   } else {
     out.emissiveFactor = tidy(m.emissive);
   }
   if (m.transmission != 0.0f) {
-    out.extensions["KHR_materials_transmission"] = tinygltf::Value(
-        tinygltf::Value::Object{{"transmissionFactor", number(m.transmission)}});
+    out.extensions["KHR_materials_transmission"] =
+        tinygltf::Value(tinygltf::Value::Object{{"transmissionFactor", number(m.transmission)}});
     useExtension(model, "KHR_materials_transmission");
   }
   if (m.ior != 1.5f) {
@@ -176,17 +175,17 @@ void addTriangleRun(const Scene& scene, size_t first, size_t end, tinygltf::Mode
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
   primitive.material = scene.material_of[first];
-  int view = addBufferView(model, positions, vertices * sizeof(glm::vec3),
-                           TINYGLTF_TARGET_ARRAY_BUFFER);
-  primitive.attributes["POSITION"] = addAccessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                                 TINYGLTF_TYPE_VEC3, vertices);
+  int view =
+      addBufferView(model, positions, vertices * sizeof(glm::vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
+  primitive.attributes["POSITION"] =
+      addAccessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, vertices);
   model.accessors.back().minValues = {lo.x, lo.y, lo.z};  // required for POSITION
   model.accessors.back().maxValues = {hi.x, hi.y, hi.z};
   if (!scene.normals.empty()) {
     view = addBufferView(model, &scene.normals[3 * first], vertices * sizeof(glm::vec3),
                          TINYGLTF_TARGET_ARRAY_BUFFER);
-    primitive.attributes["NORMAL"] = addAccessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                                 TINYGLTF_TYPE_VEC3, vertices);
+    primitive.attributes["NORMAL"] =
+        addAccessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, vertices);
   }
   std::vector<uint32_t> indices(vertices);
   for (size_t i = 0; i < vertices; ++i) indices[i] = static_cast<uint32_t>(i);
@@ -249,8 +248,12 @@ void addLight(const Light& light, tinygltf::Model& model) {
   out.intensity = tidy(light.intensity);
   out.range = tidy(light.range);
   switch (light.type) {
-    case LightType::Point: out.type = "point"; break;
-    case LightType::Directional: out.type = "directional"; break;
+    case LightType::Point:
+      out.type = "point";
+      break;
+    case LightType::Directional:
+      out.type = "directional";
+      break;
     case LightType::Spot:
       out.type = "spot";
       out.spot.innerConeAngle = tidy(light.inner_cone);
@@ -300,7 +303,8 @@ tinygltf::Model toGltf(const Scene& scene) {
 bool endsWithGlb(const std::string& path) {
   if (path.size() < 4) return false;
   std::string ext = path.substr(path.size() - 4);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext == ".glb";
 }
 

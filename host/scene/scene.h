@@ -10,14 +10,14 @@ namespace gridrt {
 // A glTF material mapped onto Whitted/Phong terms (README: "Material mapping").
 struct Material {
   std::string name = "default";
-  glm::vec3 base_color{0.8f};  // diffuse albedo (baseColorFactor.rgb)
-  float metallic = 0.0f;       // 0 dielectric, 1 metal
-  float roughness = 0.5f;      // 0 mirror-smooth .. 1 rough
-  float transmission = 0.0f;   // KHR_materials_transmission: share refracted
-  float ior = 1.5f;            // KHR_materials_ior
-  glm::vec3 attenuation_color{1.0f};     // KHR_materials_volume: colour after attenuation_distance
-  float attenuation_distance = 0.0f;     // 0 = no absorption inside
-  glm::vec3 emissive{0.0f};              // emissiveFactor * emissive_strength
+  glm::vec3 base_color{0.8f};         // diffuse albedo (baseColorFactor.rgb)
+  float metallic = 0.0f;              // 0 dielectric, 1 metal
+  float roughness = 0.5f;             // 0 mirror-smooth .. 1 rough
+  float transmission = 0.0f;          // KHR_materials_transmission: share refracted
+  float ior = 1.5f;                   // KHR_materials_ior
+  glm::vec3 attenuation_color{1.0f};  // KHR_materials_volume: colour after attenuation_distance
+  float attenuation_distance = 0.0f;  // 0 = no absorption inside
+  glm::vec3 emissive{0.0f};           // emissiveFactor * emissive_strength
   bool double_sided = true;
 };
 
@@ -38,7 +38,7 @@ struct Light {
 struct Camera {
   std::string name;
   bool orthographic = false;
-  float yfov = 0.6981317f;  // radians (perspective)
+  float yfov = 0.6981317f;         // radians (perspective)
   float xmag = 1.0f, ymag = 1.0f;  // half extents (orthographic)
   float aspect = 0.0f;             // 0 = take it from the image
   glm::mat4 world{1.0f};           // camera-to-world (looks down local -Z, +Y up)
@@ -52,8 +52,8 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Light> lights;
   Camera camera;
-  bool has_camera = false;  // false: the renderer frames the bounding box
-  bool has_lights = false;  // false: the renderer adds a default light
+  bool has_camera = false;        // false: the renderer frames the bounding box
+  bool has_lights = false;        // false: the renderer adds a default light
   size_t dropped_degenerate = 0;  // triangles skipped for NaN/Inf coordinates
   size_t dropped_zero_area = 0;   // triangles skipped for exactly zero area (repeated or
                                   // collinear vertices): never hit, and Moeller-Trumbore

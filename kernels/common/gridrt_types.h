@@ -34,7 +34,7 @@ typedef struct {
   float t;
   int prim;
   float u, v; /* barycentrics of vertices 1 and 2 */
-} GrHit; /* 16 bytes */
+} GrHit;      /* 16 bytes */
 
 /* The uniform grid as the kernels see it. */
 typedef struct {
@@ -60,7 +60,7 @@ typedef struct {
 #define GR_PAIR_T_EXIT 9  /* ... and where it leaves it */
 #define GR_PAIR_RAY 10
 #define GR_PAIR_PLANES 11
-#define gr_pair_value(q, k) ((q) * GR_PAIR_LANES + (k))
+#define gr_pair_value(q, k) ((q)*GR_PAIR_LANES + (k))
 
 /* One work-group's share of one PE: the pair_count pairs from packet first_packet on
  * (work-item w takes packet first_packet + w, and writes that packet's results). */
@@ -71,11 +71,11 @@ typedef struct {
   int pad;
 } GrPeTask; /* 16 bytes */
 
-/* Ray bundles (host/gridrt/bundles/ray_bundles.h): rays reordered so that rays close in direction sit
- * next to each other, stored as planes (structure of arrays), tested 16 at a time. A task
- * is one work-group's share of one PE: the bundle-order rays [first_ray, first_ray +
- * ray_count), whose 16-ray packets write their results from lane out_first (a multiple
- * of 16) and their masks from packet out_first / 16. */
+/* Ray bundles (host/gridrt/bundles/ray_bundles.h): rays reordered so that rays close in direction
+ * sit next to each other, stored as planes (structure of arrays), tested 16 at a time. A task is
+ * one work-group's share of one PE: the bundle-order rays [first_ray, first_ray + ray_count), whose
+ * 16-ray packets write their results from lane out_first (a multiple of 16) and their masks from
+ * packet out_first / 16. */
 typedef struct {
   int pe;
   int first_ray;
@@ -97,15 +97,15 @@ typedef struct {
 
 /* What one packet of one task did, one bit per lane. */
 typedef struct {
-  int pierced; /* the ray pierces the PE's voxel (the pair is in its traversal list) */
-  int hit;     /* ... and has a hit inside it (t, prim, u, v written for this lane) */
-  int skipped; /* ... and was skipped by the interrupt (an earlier PE had a hit) */
-  int tests;   /* ray-triangle tests the packet ran after culling (triangles x active lanes) */
+  int pierced;   /* the ray pierces the PE's voxel (the pair is in its traversal list) */
+  int hit;       /* ... and has a hit inside it (t, prim, u, v written for this lane) */
+  int skipped;   /* ... and was skipped by the interrupt (an earlier PE had a hit) */
+  int tests;     /* ray-triangle tests the packet ran after culling (triangles x active lanes) */
 } GrPacketMasks; /* 16 bytes */
 
-/* Packet culling for rays with a common origin (host/gridrt/culling/packet_culling.h): a direction d is
- * put on the tangent plane of the frame as a = d.r / d.f, b = d.u / d.f; a packet's box
- * over its lanes' (a, b) that misses a triangle's conservative box (read from four planes,
+/* Packet culling for rays with a common origin (host/gridrt/culling/packet_culling.h): a direction
+ * d is put on the tangent plane of the frame as a = d.r / d.f, b = d.u / d.f; a packet's box over
+ * its lanes' (a, b) that misses a triangle's conservative box (read from four planes,
  * CullPlaneCache) skips the triangle. */
 typedef struct {
   float fx, fy, fz, enabled; /* forward: every culled ray has d.f > 0; enabled 0: no culling */

@@ -8,10 +8,9 @@
 #define GRIDRT_MOLLER_TRUMBORE_H
 #include "gridrt_types.h"
 
-GR_FN int gr_intersect_mt(float ox, float oy, float oz, float dx, float dy, float dz,
-                          float v0x, float v0y, float v0z, float e1x, float e1y, float e1z,
-                          float e2x, float e2y, float e2z, float* t_out, float* u_out,
-                          float* v_out) {
+GR_FN int gr_intersect_mt(float ox, float oy, float oz, float dx, float dy, float dz, float v0x,
+                          float v0y, float v0z, float e1x, float e1y, float e1z, float e2x,
+                          float e2y, float e2z, float* t_out, float* u_out, float* v_out) {
   float px = dy * e2z - dz * e2y;
   float py = dz * e2x - dx * e2z;
   float pz = dx * e2y - dy * e2x;

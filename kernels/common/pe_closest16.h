@@ -5,13 +5,12 @@
  * once every active lane has a hit. best_prim is -1 where a lane found none.
  * With cull, triangle i is skipped when its box (cull_planes, CullPlaneCache) misses
  * packet_box (amin, amax, bmin, bmax of the active lanes on the tangent plane;
- * host/gridrt/culling/packet_culling.h): the boxes are grown by the test's rounding, so no triangle a
- * lane could hit is skipped.
- * With seg->enabled (rays with their own origins), triangle i is skipped when its outline
- * and the packet's in-voxel segments, both projected across the packet's mean direction,
- * are further apart than a bound on the test's rounding (host/gridrt/culling/segment_culling.h).
- * tests_out: the ray-triangle tests it ran, the triangles left after culling times the
- * active lanes. */
+ * host/gridrt/culling/packet_culling.h): the boxes are grown by the test's rounding, so no triangle
+ * a lane could hit is skipped. With seg->enabled (rays with their own origins), triangle i is
+ * skipped when its outline and the packet's in-voxel segments, both projected across the packet's
+ * mean direction, are further apart than a bound on the test's rounding
+ * (host/gridrt/culling/segment_culling.h). tests_out: the ray-triangle tests it ran, the triangles
+ * left after culling times the active lanes. */
 #ifndef GRIDRT_PE_CLOSEST16_H
 #define GRIDRT_PE_CLOSEST16_H
 #include "gridrt_types.h"
@@ -61,8 +60,10 @@ typedef struct {
 } GrSegmentPacket;
 
 /* The packet's summary over its active lanes, whose hits may lie only in [t_lo, t_hi]. */
-inline __attribute__((always_inline)) GrSegmentPacket gr_segment_packet16(
-    const GrRays16* r, float16 t_lo, float16 t_hi, int16 active) {
+inline __attribute__((always_inline)) GrSegmentPacket gr_segment_packet16(const GrRays16* r,
+                                                                          float16 t_lo,
+                                                                          float16 t_hi,
+                                                                          int16 active) {
   GrSegmentPacket s;
   const float16 zero = 0.0f, inf = INFINITY;
   float mx = gr_lane_sum16(select(zero, r->dx, active));
@@ -106,8 +107,8 @@ inline __attribute__((always_inline)) GrSegmentPacket gr_segment_packet16(
   s.drx = 0.5f * (dx1 - dx0);
   s.dry = 0.5f * (dy1 - dy0);
   s.drz = 0.5f * (dz1 - dz0);
-  s.reach = gr_lane_max16(
-      select(zero, fabs(r->ox) + fabs(r->oy) + fabs(r->oz) + fabs(t_hi), active));
+  s.reach =
+      gr_lane_max16(select(zero, fabs(r->ox) + fabs(r->oy) + fabs(r->oz) + fabs(t_hi), active));
   s.enabled = isfinite(s.reach) && isfinite(s.amin + s.amax + s.bmin + s.bmax);
   return s;
 }
@@ -116,8 +117,9 @@ inline __attribute__((always_inline)) GrSegmentPacket gr_segment_packet16(
  * their projected outlines lie further from the packet's box than the margin
  * GR_SEG_ERROR * K * (reach of the packet + reach of the triangle), K = |e1| |e2| / |d.n|
  * bounded over the packet's direction box, and K <= GR_SEG_MAX_CONDITIONING. */
-inline __attribute__((always_inline)) int gr_segment_culled16(
-    const GrSegmentPacket* s, __global const float* planes, int stride, int chunk) {
+inline __attribute__((always_inline)) int gr_segment_culled16(const GrSegmentPacket* s,
+                                                              __global const float* planes,
+                                                              int stride, int chunk) {
   __global const float* q = planes + chunk;
   const float16 x0 = vload16(0, q + GR_SEG_V0X * stride), y0 = vload16(0, q + GR_SEG_V0Y * stride);
   const float16 z0 = vload16(0, q + GR_SEG_V0Z * stride), x1 = vload16(0, q + GR_SEG_V1X * stride);
@@ -147,11 +149,10 @@ inline __attribute__((always_inline)) int gr_segment_culled16(
 
 inline __attribute__((always_inline)) void gr_pe_closest16(
     const GrRays16* r, __global const GrTriangle* tris, int begin, int end, float16 tmin,
-    float16 tmax, float16 t_enter, float16 t_exit, int16 active, int any_hit,
-    float16* best_t_out, float16* best_u_out, float16* best_v_out, int16* best_prim_out,
+    float16 tmax, float16 t_enter, float16 t_exit, int16 active, int any_hit, float16* best_t_out,
+    float16* best_u_out, float16* best_v_out, int16* best_prim_out,
     __global const float* cull_planes, int cull_stride, float4 packet_box, int cull,
-    const GrSegmentPacket* seg, __global const float* seg_planes, int seg_stride,
-    int* tests_out) {
+    const GrSegmentPacket* seg, __global const float* seg_planes, int seg_stride, int* tests_out) {
   int tested = 0;
   float16 best_t = tmax, best_u = 0.0f, best_v = 0.0f;
   int16 best_prim = -1;
@@ -169,8 +170,8 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
       const float16 amax = vload16(0, cull_planes + cull_stride + chunk);
       const float16 bmin = vload16(0, cull_planes + 2 * cull_stride + chunk);
       const float16 bmax = vload16(0, cull_planes + 3 * cull_stride + chunk);
-      const int16 miss = (amax < packet_box.s0) | (amin > packet_box.s1) |
-                         (bmax < packet_box.s2) | (bmin > packet_box.s3);
+      const int16 miss = (amax < packet_box.s0) | (amin > packet_box.s1) | (bmax < packet_box.s2) |
+                         (bmin > packet_box.s3);
       todo &= ~(uint)gr_lane_bits16(miss);
     }
     if (seg_cull) todo &= ~(uint)gr_segment_culled16(seg, seg_planes, seg_stride, chunk);
@@ -180,8 +181,8 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
       GrTriangle tri = tris[i];
       ++tested;
       float16 t, u, v;
-      int16 hit = gr_intersect16(r, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z,
-                                 tri.e2x, tri.e2y, tri.e2z, &t, &u, &v);
+      int16 hit = gr_intersect16(r, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z, tri.e2x,
+                                 tri.e2y, tri.e2z, &t, &u, &v);
       /* The in-voxel rule: without it a triangle spanning voxels could win in a PE that
        * comes before the voxel where its hit really lies. */
       hit &= active & (t > tmin) & (t < best_t) & (t >= t_enter) & (t <= t_exit);

@@ -57,9 +57,7 @@ GR_FN int gr_wt_major_axis(float dx, float dy, float dz) {
   return (ax > ay) ? ((ax > az) ? 0 : 2) : ((ay > az) ? 1 : 2);
 }
 
-GR_FN float gr_wt_pick(int k, float x, float y, float z) {
-  return k == 0 ? x : (k == 1 ? y : z);
-}
+GR_FN float gr_wt_pick(int k, float x, float y, float z) { return k == 0 ? x : (k == 1 ? y : z); }
 
 /* The test on three vertices a, b, c (the watertight core). */
 GR_FN int gr_intersect_watertight_vertices(float ox, float oy, float oz, float dx, float dy,
@@ -110,16 +108,16 @@ GR_FN int gr_intersect_watertight_vertices(float ox, float oy, float oz, float d
 /* The signature of gr_intersect_mt: v0 and either the edges e1, e2 (default layout) or,
  * with GR_TRIANGLE_VERTICES, the vertices v1, v2 in their place. */
 GR_FN int gr_intersect_watertight(float ox, float oy, float oz, float dx, float dy, float dz,
-                                  float v0x, float v0y, float v0z, float e1x, float e1y,
-                                  float e1z, float e2x, float e2y, float e2z, float* t_out,
-                                  float* u_out, float* v_out) {
+                                  float v0x, float v0y, float v0z, float e1x, float e1y, float e1z,
+                                  float e2x, float e2y, float e2z, float* t_out, float* u_out,
+                                  float* v_out) {
 #ifdef GR_TRIANGLE_VERTICES
-  return gr_intersect_watertight_vertices(ox, oy, oz, dx, dy, dz, v0x, v0y, v0z, e1x, e1y,
-                                          e1z, e2x, e2y, e2z, t_out, u_out, v_out);
+  return gr_intersect_watertight_vertices(ox, oy, oz, dx, dy, dz, v0x, v0y, v0z, e1x, e1y, e1z, e2x,
+                                          e2y, e2z, t_out, u_out, v_out);
 #else
   return gr_intersect_watertight_vertices(ox, oy, oz, dx, dy, dz, v0x, v0y, v0z, v0x + e1x,
-                                          v0y + e1y, v0z + e1z, v0x + e2x, v0y + e2y,
-                                          v0z + e2z, t_out, u_out, v_out);
+                                          v0y + e1y, v0z + e1z, v0x + e2x, v0y + e2y, v0z + e2z,
+                                          t_out, u_out, v_out);
 #endif
 }
 

@@ -35,9 +35,9 @@ inline void gr_wt_shear16(GrRays16* r) {
 }
 
 inline int16 gr_intersect_watertight16_vertices(const GrRays16* r, float ax, float ay, float az,
-                                                float bx, float by, float bz, float cx,
-                                                float cy, float cz, float16* t_out,
-                                                float16* u_out, float16* v_out) {
+                                                float bx, float by, float bz, float cx, float cy,
+                                                float cz, float16* t_out, float16* u_out,
+                                                float16* v_out) {
   const int16 kx = r->kx, ky = r->ky, kz = r->kz;
   const float16 sx = r->sx, sy = r->sy, sz = r->sz;
   float16 rax = ax - r->ox, ray2 = ay - r->oy, raz = az - r->oz;
@@ -59,18 +59,26 @@ inline int16 gr_intersect_watertight16_vertices(const GrRays16* r, float ax, flo
     /* Rare: redo the zero lanes with the scalar edge function and its double fallback. */
     float l_pax[16], l_pay[16], l_pbx[16], l_pby[16], l_pcx[16], l_pcy[16];
     float l_eu[16], l_ev[16], l_ew[16];
-    vstore16(pax, 0, l_pax); vstore16(pay, 0, l_pay); vstore16(pbx, 0, l_pbx);
-    vstore16(pby, 0, l_pby); vstore16(pcx, 0, l_pcx); vstore16(pcy, 0, l_pcy);
-    vstore16(eu, 0, l_eu); vstore16(ev, 0, l_ev); vstore16(ew, 0, l_ew);
+    vstore16(pax, 0, l_pax);
+    vstore16(pay, 0, l_pay);
+    vstore16(pbx, 0, l_pbx);
+    vstore16(pby, 0, l_pby);
+    vstore16(pcx, 0, l_pcx);
+    vstore16(pcy, 0, l_pcy);
+    vstore16(eu, 0, l_eu);
+    vstore16(ev, 0, l_ev);
+    vstore16(ew, 0, l_ew);
     for (int k = 0; k < 16; ++k) {
       if (l_eu[k] == 0.0f) l_eu[k] = gr_wt_edge(l_pcx[k], l_pcy[k], l_pbx[k], l_pby[k]);
       if (l_ev[k] == 0.0f) l_ev[k] = gr_wt_edge(l_pax[k], l_pay[k], l_pcx[k], l_pcy[k]);
       if (l_ew[k] == 0.0f) l_ew[k] = gr_wt_edge(l_pbx[k], l_pby[k], l_pax[k], l_pay[k]);
     }
-    eu = vload16(0, l_eu); ev = vload16(0, l_ev); ew = vload16(0, l_ew);
+    eu = vload16(0, l_eu);
+    ev = vload16(0, l_ev);
+    ew = vload16(0, l_ew);
   }
-  int16 outside = ((eu < 0.0f) | (ev < 0.0f) | (ew < 0.0f)) &
-                  ((eu > 0.0f) | (ev > 0.0f) | (ew > 0.0f));
+  int16 outside =
+      ((eu < 0.0f) | (ev < 0.0f) | (ew < 0.0f)) & ((eu > 0.0f) | (ev > 0.0f) | (ew > 0.0f));
   float16 det = eu + ev + ew;
   float16 t_scaled = eu * (sz * a_kz) + ev * (sz * b_kz) + ew * (sz * c_kz);
   float16 inv_det = 1.0f / det;
@@ -83,15 +91,13 @@ inline int16 gr_intersect_watertight16_vertices(const GrRays16* r, float ax, flo
 /* The signature of gr_intersect_mt16; the triangle layout as gr_intersect_watertight. */
 inline int16 gr_intersect_watertight16(const GrRays16* r, float v0x, float v0y, float v0z,
                                        float e1x, float e1y, float e1z, float e2x, float e2y,
-                                       float e2z, float16* t_out, float16* u_out,
-                                       float16* v_out) {
+                                       float e2z, float16* t_out, float16* u_out, float16* v_out) {
 #ifdef GR_TRIANGLE_VERTICES
-  return gr_intersect_watertight16_vertices(r, v0x, v0y, v0z, e1x, e1y, e1z, e2x, e2y, e2z,
-                                            t_out, u_out, v_out);
+  return gr_intersect_watertight16_vertices(r, v0x, v0y, v0z, e1x, e1y, e1z, e2x, e2y, e2z, t_out,
+                                            u_out, v_out);
 #else
   return gr_intersect_watertight16_vertices(r, v0x, v0y, v0z, v0x + e1x, v0y + e1y, v0z + e1z,
-                                            v0x + e2x, v0y + e2y, v0z + e2z, t_out, u_out,
-                                            v_out);
+                                            v0x + e2x, v0y + e2y, v0z + e2z, t_out, u_out, v_out);
 #endif
 }
 

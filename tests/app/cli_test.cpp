@@ -62,8 +62,8 @@ RunResult runGridrt(const std::vector<std::string>& args) {
   argv.insert(argv.end(), args.begin(), args.end());
   RunResult r = gridrt::test::runCommand(argv);
   if (const char* v = std::getenv("GRIDRT_CLI_VERBOSE"); v && *v && *v != '0')
-    std::cout << "[cli] " << describe(args) << "\n[cli]   exit " << r.exit_code << ", stderr: "
-              << r.err << std::flush;
+    std::cout << "[cli] " << describe(args) << "\n[cli]   exit " << r.exit_code
+              << ", stderr: " << r.err << std::flush;
   return r;
 }
 
@@ -145,10 +145,10 @@ std::string rawBytes(const std::vector<T>& values) {
 }
 
 struct MeshSpec {
-  std::vector<float> positions;    // xyz per vertex
-  std::vector<uint16_t> indices;   // empty: non-indexed
-  int mode = 4;                    // 4 triangles, 0 points
-  int position_accessor = 0;       // override to make it dangle
+  std::vector<float> positions;   // xyz per vertex
+  std::vector<uint16_t> indices;  // empty: non-indexed
+  int mode = 4;                   // 4 triangles, 0 points
+  int position_accessor = 0;      // override to make it dangle
 };
 
 // A one-mesh, one-node glTF with its buffer as a base64 data URI (camera and lights are the
@@ -249,8 +249,8 @@ TEST(Cli, WrongMagicGlb) {
   std::string json = makeGltf(quad());
   while (json.size() % 4) json.push_back(' ');
   auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
-  std::string glb = "glTX" + u32(2) + u32(uint32_t(20 + json.size())) +
-                    u32(uint32_t(json.size())) + "JSON" + json;
+  std::string glb = "glTX" + u32(2) + u32(uint32_t(20 + json.size())) + u32(uint32_t(json.size())) +
+                    "JSON" + json;
   std::string scene = writeFixture("wrong_magic.glb", glb);
   RunResult r = expectFailure("wrong_magic", {scene}, 1, "wrong_magic.glb");
   EXPECT_NE(r.err.find("magic"), std::string::npos) << r.err;
@@ -290,8 +290,8 @@ TEST(Cli, NoTriangles) {
 TEST(Cli, NanVertexIsDroppedWithWarning) {
   MeshSpec m;
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  m.positions = {0, 0, 0, 1, 0, 0, 1, 1, 0,     // fine
-                 0, 0, 0, 1, 1, 0, 0, 1, 0,     // fine
+  m.positions = {0, 0, 0,    1,   0, 0,    1, 1, 0,      // fine
+                 0, 0, 0,    1,   1, 0,    0, 1, 0,      // fine
                  0, 0, 0.5f, nan, 0, 0.5f, 0, 1, 0.5f};  // NaN x
   std::string scene = writeFixture("nan_vertex.gltf", makeGltf(m));
   const std::string dir = freshDir("nan_vertex");
@@ -378,9 +378,9 @@ TEST(Cli, UnknownDevice) {
   RunResult probe = runGridrt({"--list-devices"});
   if (probe.exit_code == 1 && probe.err.find("no OpenCL") != std::string::npos)
     GTEST_SKIP() << "no OpenCL device on this machine: " << probe.err;
-  RunResult r = expectFailure("unknown_device",
-                              {"--device", "nosuchdevice", "--width", "8", "--height", "8"}, 2,
-                              "nosuchdevice");
+  RunResult r =
+      expectFailure("unknown_device", {"--device", "nosuchdevice", "--width", "8", "--height", "8"},
+                    2, "nosuchdevice");
   EXPECT_NE(r.err.find("available"), std::string::npos) << r.err;
 }
 
@@ -413,8 +413,8 @@ TEST(Cli, OutputIsADirectory) {
 
 TEST(Cli, AovNotExr) {
   const std::string dir = freshDir("aov_png");
-  RunResult r = expectFailure("aov_png_run", {"--aov", "depth=" + dir + "/depth.png"}, 1,
-                              "depth.png");
+  RunResult r =
+      expectFailure("aov_png_run", {"--aov", "depth=" + dir + "/depth.png"}, 1, "depth.png");
   EXPECT_TRUE(listDir(dir).empty());
 }
 

@@ -52,8 +52,8 @@ TEST(Progress, FractionIsClampedAndRemainingNeverNegative) {
 
 TEST(Progress, NothingButTheSummaryWhenStderrIsNotATerminal) {
   if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
-  CommandResult r = runCommand({gridrtBinary(), "--width", "64", "--height", "48", "--repeat",
-                                "8", "-o", tempPath("quiet_progress.png")});
+  CommandResult r = runCommand({gridrtBinary(), "--width", "64", "--height", "48", "--repeat", "8",
+                                "-o", tempPath("quiet_progress.png")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("elapsed"), std::string::npos) << r.err;
@@ -66,8 +66,8 @@ TEST(Progress, BarIsDrawnOnATerminalForALongRender) {
   if (std::system("command -v script >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "util-linux 'script' is not installed (needed for a pseudo-terminal)";
   // Long enough (about 2 s here) to pass the bar's 0.5 s delay on any machine.
-  std::string command = gridrtBinary() + " --width 320 --height 240 --repeat 30 -o " +
-                        tempPath("tty_progress.png");
+  std::string command =
+      gridrtBinary() + " --width 320 --height 240 --repeat 30 -o " + tempPath("tty_progress.png");
   CommandResult r = runCommand({"script", "-qec", command, "/dev/null"});
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("elapsed, about"), std::string::npos) << r.out;
@@ -75,9 +75,7 @@ TEST(Progress, BarIsDrawnOnATerminalForALongRender) {
   EXPECT_NE(r.out.find("Mrays/s"), std::string::npos) << r.out;
 }
 
-TEST(Progress, QuietSuppressesTheBarOnATerminalToo) {
-  EXPECT_FALSE(gridrt::progressWanted(true));
-}
+TEST(Progress, QuietSuppressesTheBarOnATerminalToo) { EXPECT_FALSE(gridrt::progressWanted(true)); }
 
 // --- --crop ---------------------------------------------------------------------------------
 
@@ -117,7 +115,8 @@ TEST(CropOption, BadWindowOnTheCommandLineExitsWithUsageCode) {
 TEST(Resources, HugeImageIsRefusedAtOnceWithOneLine) {
   const std::string out = tempPath("huge.png");
   auto start = std::chrono::steady_clock::now();
-  CommandResult r = runCommand({gridrtBinary(), "--width", "65536", "--height", "65536", "-o", out});
+  CommandResult r =
+      runCommand({gridrtBinary(), "--width", "65536", "--height", "65536", "-o", out});
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_LT(seconds, 10.0);
@@ -128,8 +127,9 @@ TEST(Resources, HugeImageIsRefusedAtOnceWithOneLine) {
 
 TEST(Devices, PlainIndexPicksTheNthDeviceOfTheTable) {
   if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
-  std::vector<std::string> argv{gridrtBinary(), "--device", "0", "--width", "8", "--height", "8",
-                                "-o", tempPath("device0.png")};
+  std::vector<std::string> argv{
+      gridrtBinary(),         "--device", "0", "--width", "8", "--height", "8", "-o",
+      tempPath("device0.png")};
   CommandResult r = runCommand(argv);
   ASSERT_EQ(r.exit_code, 0) << joinArgs(argv) << "\n" << r.err;
   EXPECT_EQ(r.err.rfind("gridrt: device 0:0 ", 0), 0u) << r.err;
@@ -148,8 +148,9 @@ TEST(Devices, IndexPastTheTableIsAUsageError) {
 
 nlohmann::json renderStats(const std::string& name, std::vector<std::string> extra) {
   const std::string json = tempPath(name + ".json");
-  std::vector<std::string> argv{gridrtBinary(), "--width", "64", "--height", "48", "-q",
-                                "-o", tempPath(name + ".png"), "--stats-json", json};
+  std::vector<std::string> argv{gridrtBinary(), "--width", "64", "--height",
+                                "48",           "-q",      "-o", tempPath(name + ".png"),
+                                "--stats-json", json};
   argv.insert(argv.end(), extra.begin(), extra.end());
   CommandResult r = runCommand(argv);
   EXPECT_EQ(r.exit_code, 0) << joinArgs(argv) << "\n" << r.err;
@@ -169,8 +170,8 @@ TEST(Statistics, TracingTimeSplitsByRayKind) {
   EXPECT_NEAR(t["primary_ms"].get<double>() + t["secondary_ms"].get<double>() +
                   t["shadow_ms"].get<double>(),
               all["intersect_ms"].get<double>(), 1e-9);
-  const double secondary_rays = all["rays"]["reflection"].get<double>() +
-                                all["rays"]["refraction"].get<double>();
+  const double secondary_rays =
+      all["rays"]["reflection"].get<double>() + all["rays"]["refraction"].get<double>();
   EXPECT_NEAR(t["secondary_ns_per_ray"].get<double>(),
               t["secondary_ms"].get<double>() * 1e6 / secondary_rays, 1e-6);
 

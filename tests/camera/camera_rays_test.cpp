@@ -1,11 +1,11 @@
 // The vectorised row generator must give the very rays of the per-pixel generator: the
 // renderer uses the first, every reference and test the second.
+#include "camera_rays.h"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <vector>
-
-#include "camera_rays.h"
 
 namespace gridrt {
 namespace {
@@ -28,7 +28,8 @@ TEST(CameraRays, CentreRowEqualsPerPixelRaysBitForBit) {
     int differing = 0;
     for (int j = 0; j < c.height; ++j) {
       generate.centreRow(j, 3, c.width, row.data());
-      for (int i = 3; i < c.width; ++i) differing += !sameBits(row[i - 3], generate(i, j, 0.5f, 0.5f));
+      for (int i = 3; i < c.width; ++i)
+        differing += !sameBits(row[i - 3], generate(i, j, 0.5f, 0.5f));
     }
     EXPECT_EQ(differing, 0) << c.width << "x" << c.height;
   }

@@ -3,6 +3,8 @@
 // trace the rays gridrt's renderer hands it as the exact reference does. Each test fails
 // if a ray field is dropped on the way into Embree (tmin, tmax), if the packets' lanes and
 // the rays do not line up, or if the occlusion query's answer is read the wrong way round.
+#include "embree_intersector.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,7 +13,6 @@
 
 #include "camera_rays.h"
 #include "default_scene.h"
-#include "embree_intersector.h"
 #include "gltf_loader.h"
 #include "pinhole_view.h"
 #include "prepared_triangles.h"

@@ -2,6 +2,8 @@
 // reference (per-voxel slab tests over every voxel of the grid), its interval bookkeeping,
 // the degenerate rays (axis-parallel with +-0 components, through edges and corners,
 // starting on faces, non-finite), and computeTraversalLists against a plain DDA walk.
+#include "grid_dda.h"
+
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -15,7 +17,6 @@
 #include <tuple>
 #include <vector>
 
-#include "grid_dda.h"
 #include "prepared_triangles.h"
 #include "scene.h"
 #include "traversal_lists.h"
@@ -56,8 +57,8 @@ struct Visit {
 };
 
 bool stateHasNaN(const GrDda& s) {
-  for (float f : {s.t_enter, s.t_exit, s.t_end, s.ox, s.oy, s.oz, s.idx, s.idy, s.idz, s.tnx,
-                  s.tny, s.tnz})
+  for (float f :
+       {s.t_enter, s.t_exit, s.t_end, s.ox, s.oy, s.oz, s.idx, s.idy, s.idz, s.tnx, s.tny, s.tnz})
     if (std::isnan(f)) return true;
   return false;
 }
@@ -89,8 +90,8 @@ std::vector<Visit> walk(const GrGridInfo& g, const Ray& r, bool* began = nullptr
 
 struct RefVoxel {
   glm::ivec3 v;
-  double t0, t1;      // the ray's parameter range inside the closed box
-  bool interior;      // the ray passes through the open box over a positive length
+  double t0, t1;  // the ray's parameter range inside the closed box
+  bool interior;  // the ray passes through the open box over a positive length
 };
 
 // Every voxel whose closed box (grown by `grow`) the segment [tmin, tmax] of the ray meets,
@@ -128,8 +129,8 @@ std::vector<RefVoxel> reference(const GrGridInfo& g, const Ray& r, double grow =
 
 std::string str(const Ray& r) {
   char buf[256];
-  std::snprintf(buf, sizeof buf, "ray o=(%.9g,%.9g,%.9g) d=(%.9g,%.9g,%.9g) t=[%.9g,%.9g]",
-                r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.tmin, r.tmax);
+  std::snprintf(buf, sizeof buf, "ray o=(%.9g,%.9g,%.9g) d=(%.9g,%.9g,%.9g) t=[%.9g,%.9g]", r.o.x,
+                r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.tmin, r.tmax);
   return buf;
 }
 
@@ -160,8 +161,8 @@ bool isGeneric(const std::vector<RefVoxel>& ref, double gap = 1e-4) {
 void expectConsistent(const GrGridInfo& g, const Ray& r, const std::vector<Visit>& seq,
                       const std::vector<RefVoxel>& ref) {
   SCOPED_TRACE(str(r));
-  ASSERT_EQ(seq.empty(), ref.empty()) << "DDA visits " << seq.size() << ", reference "
-                                      << ref.size();
+  ASSERT_EQ(seq.empty(), ref.empty())
+      << "DDA visits " << seq.size() << ", reference " << ref.size();
   if (seq.empty()) return;
   std::map<std::tuple<int, int, int>, RefVoxel> touched;
   for (const auto& v : reference(g, r, 1e-5)) touched[{v.v.x, v.v.y, v.v.z}] = v;
@@ -207,8 +208,8 @@ void expectConsistent(const GrGridInfo& g, const Ray& r, const std::vector<Visit
   for (const auto& v : ref) {
     if (!v.interior || v.t1 - v.t0 < 1e-4) continue;
     bool found = std::any_of(seq.begin(), seq.end(), [&](const Visit& s) { return s.v == v.v; });
-    EXPECT_TRUE(found) << "skips voxel " << str(v.v) << " crossed over [" << v.t0 << ", "
-                       << v.t1 << "]";
+    EXPECT_TRUE(found) << "skips voxel " << str(v.v) << " crossed over [" << v.t0 << ", " << v.t1
+                       << "]";
   }
 }
 
@@ -382,11 +383,17 @@ TEST(GridDda, AxisParallelRaysVisitExactlyTheirRowWithoutNaN) {
       {{-5.0f, my, mz}, {1.0f, -0.0f, 0.0f}, {{0, 3, 2}, {1, 3, 2}, {2, 3, 2}, {3, 3, 2}}},
       {{-5.0f, my, mz}, {1.0f, -0.0f, -0.0f}, {{0, 3, 2}, {1, 3, 2}, {2, 3, 2}, {3, 3, 2}}},
       {{5.0f, my, mz}, {-1.0f, -0.0f, 0.0f}, {{3, 3, 2}, {2, 3, 2}, {1, 3, 2}, {0, 3, 2}}},
-      {{mx, 9.0f, mz}, {0.0f, -1.0f, 0.0f}, {{1, 4, 2}, {1, 3, 2}, {1, 2, 2}, {1, 1, 2}, {1, 0, 2}}},
-      {{mx, 9.0f, mz}, {-0.0f, -1.0f, -0.0f}, {{1, 4, 2}, {1, 3, 2}, {1, 2, 2}, {1, 1, 2}, {1, 0, 2}}},
-      {{mx, my, -3.0f}, {0.0f, 0.0f, 1.0f},
+      {{mx, 9.0f, mz},
+       {0.0f, -1.0f, 0.0f},
+       {{1, 4, 2}, {1, 3, 2}, {1, 2, 2}, {1, 1, 2}, {1, 0, 2}}},
+      {{mx, 9.0f, mz},
+       {-0.0f, -1.0f, -0.0f},
+       {{1, 4, 2}, {1, 3, 2}, {1, 2, 2}, {1, 1, 2}, {1, 0, 2}}},
+      {{mx, my, -3.0f},
+       {0.0f, 0.0f, 1.0f},
        {{1, 3, 0}, {1, 3, 1}, {1, 3, 2}, {1, 3, 3}, {1, 3, 4}, {1, 3, 5}}},
-      {{mx, my, -3.0f}, {-0.0f, -0.0f, 1.0f},
+      {{mx, my, -3.0f},
+       {-0.0f, -0.0f, 1.0f},
        {{1, 3, 0}, {1, 3, 1}, {1, 3, 2}, {1, 3, 3}, {1, 3, 4}, {1, 3, 5}}},
       // Starting inside: the rest of the row only.
       {{mx, my, mz}, {0.0f, 0.0f, 1.0f}, {{1, 3, 2}, {1, 3, 3}, {1, 3, 4}, {1, 3, 5}}},
@@ -414,8 +421,7 @@ TEST(GridDda, AxisParallelRaysVisitExactlyTheirRowWithoutNaN) {
     auto seq = walk(g, r);
     expectConsistent(g, r, seq, reference(g, r));
     ASSERT_EQ(seq.size(), 4u);
-    for (int i = 0; i < 4; ++i)
-      EXPECT_EQ(seq[i].v, glm::ivec3(i, y == g.miny ? 0 : g.ny - 1, 2));
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(seq[i].v, glm::ivec3(i, y == g.miny ? 0 : g.ny - 1, 2));
   }
   // Parallel to an axis but outside the grid's slab: misses.
   for (glm::vec3 d : {glm::vec3(1, 0, 0), glm::vec3(1, -0.0f, 0), glm::vec3(0, 0, -1)}) {
@@ -542,7 +548,7 @@ TEST(GridDda, RaysMissingTheGridOrNotFiniteReturnZero) {
   EXPECT_EQ(gr_dda_begin(&g, -5, 0, 1, -1, 0, 0, 0, kInf, &s), 0);
   EXPECT_EQ(gr_dda_begin(&g, -5, 10, 1, 1, 0, 0, 0, kInf, &s), 0);
   EXPECT_EQ(gr_dda_begin(&g, -5, 0, 1, 0.6f, 0.8f, 0, 0, kInf, &s), 0);
-  EXPECT_EQ(gr_dda_begin(&g, -5, 0, 1, 1, 0, 0, 0, 3.0f, &s), 0);  // grid starts at x = -1.5
+  EXPECT_EQ(gr_dda_begin(&g, -5, 0, 1, 1, 0, 0, 0, 3.0f, &s), 0);     // grid starts at x = -1.5
   EXPECT_EQ(gr_dda_begin(&g, -5, 0, 1, 1, 0, 0, 9.0f, kInf, &s), 0);  // starts past it
   EXPECT_EQ(gr_dda_begin(&g, -5, 0, 1, 1, 0, 0, 2.0f, 1.0f, &s), 0);  // empty range
   // The same ray, well-formed, hits.
@@ -635,8 +641,8 @@ void expectListsMatchTheWalk(const UniformGrid& grid, const GrRay* rays, size_t 
     const GrRay& ray = rays[r];
     std::vector<ListEntry> want;
     GrDda s;
-    if (gr_dda_begin(&grid.info, ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, ray.tmin,
-                     ray.tmax, &s)) {
+    if (gr_dda_begin(&grid.info, ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, ray.tmin, ray.tmax,
+                     &s)) {
       do {
         int pe = grid.pe_of_voxel[s.ix + grid.info.nx * (s.iy + grid.info.ny * s.iz)];
         if (pe >= 0) want.push_back({pe, s.t_enter, s.t_exit});
@@ -719,8 +725,8 @@ TEST(TraversalLists, MatchTheDdaWalkForRaysThatTripDdas) {
   const GrGridInfo& g = grid.info;
   const float denorm = std::numeric_limits<float>::denorm_min();
   const float tiny = std::numeric_limits<float>::min();
-  const float odd_components[] = {0.0f, -0.0f, denorm, -denorm, 1e-40f, tiny, -tiny,
-                                  1e-30f, 1e30f, -1e30f, kInf, -kInf, kNaN};
+  const float odd_components[] = {0.0f,   -0.0f, denorm, -denorm, 1e-40f, tiny, -tiny,
+                                  1e-30f, 1e30f, -1e30f, kInf,    -kInf,  kNaN};
   const float odd_intervals[] = {0.0f, -1.0f, 1e-30f, 0.5f, 2.0f, kInf, -kInf, kNaN};
   auto pick = [&](const float* values, size_t n) { return values[rng() % n]; };
   std::vector<GrRay> rays;
@@ -728,7 +734,9 @@ TEST(TraversalLists, MatchTheDdaWalkForRaysThatTripDdas) {
     glm::vec3 o = randomOrigin(rng, g);
     glm::vec3 d = someDirection(rng, g, o);
     switch (i % 8) {
-      case 0: d[rng() % 3] = pick(odd_components, std::size(odd_components)); break;
+      case 0:
+        d[rng() % 3] = pick(odd_components, std::size(odd_components));
+        break;
       case 1:  // on a voxel plane of each axis
         o = glm::vec3(g.minx + float(rng() % (g.nx + 1)) * g.cellx,
                       g.miny + float(rng() % (g.ny + 1)) * g.celly,
@@ -736,9 +744,12 @@ TEST(TraversalLists, MatchTheDdaWalkForRaysThatTripDdas) {
         break;
       case 2:  // on a plane, along it, through edges
         o[rng() % 3] = g.minx + float(rng() % (g.nx + 1)) * g.cellx;
-        d = glm::vec3(float(int(rng() % 3) - 1), float(int(rng() % 3) - 1), float(int(rng() % 3) - 1));
+        d = glm::vec3(float(int(rng() % 3) - 1), float(int(rng() % 3) - 1),
+                      float(int(rng() % 3) - 1));
         break;
-      case 3: o[rng() % 3] = pick(odd_components, std::size(odd_components)); break;
+      case 3:
+        o[rng() % 3] = pick(odd_components, std::size(odd_components));
+        break;
       case 4: {  // on a voxel plane, moving along it by an odd amount (0 * inf is NaN)
         const int a = rng() % 3;
         const float mins[3] = {g.minx, g.miny, g.minz}, cells[3] = {g.cellx, g.celly, g.cellz};
@@ -747,7 +758,8 @@ TEST(TraversalLists, MatchTheDdaWalkForRaysThatTripDdas) {
         d[a] = pick(odd_components, std::size(odd_components));
         break;
       }
-      default: break;
+      default:
+        break;
     }
     float tmin = i % 5 == 0 ? pick(odd_intervals, std::size(odd_intervals)) : 0.0f;
     float tmax = i % 7 == 0 ? pick(odd_intervals, std::size(odd_intervals)) : kInf;

@@ -2,6 +2,8 @@
 // closed box it really overlaps (checked against a brute-force all-voxels x all-triangles
 // separating-axis test), PE numbering and CSR layout, the auto resolution formula, and the
 // degenerate inputs (flat scenes, single points, empty scenes, boundary-plane triangles).
+#include "uniform_grid.h"
+
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -18,7 +20,6 @@
 #include "scene.h"
 #include "test_support.h"
 #include "triangle_box_overlap.h"
-#include "uniform_grid.h"
 
 namespace gridrt {
 namespace {
@@ -176,8 +177,8 @@ void expectExactLists(const UniformGrid& g, const std::vector<GrTriangle>& tris)
         std::vector<int> got = listedIn(g, v);
         for (int t : got) ++times_listed[t];
         if (got != want && bad++ < 5)
-          ADD_FAILURE() << "voxel (" << x << "," << y << "," << z << "): grid lists "
-                        << got.size() << " triangles, brute force finds " << want.size();
+          ADD_FAILURE() << "voxel (" << x << "," << y << "," << z << "): grid lists " << got.size()
+                        << " triangles, brute force finds " << want.size();
       }
   EXPECT_EQ(bad, 0) << "voxels whose list differs from brute force";
   // The grid box covers the scene: every triangle is somewhere.
@@ -211,7 +212,8 @@ const std::vector<GridSettings>& allResolutions() {
 TEST(UniformGrid, EveryTriangleIsInEveryVoxelItOverlapsAndNoOtherOnRandomSoups) {
   for (uint32_t seed : {1u, 2u, 3u}) {
     auto soup = randomSoup(seed, 250, {-3.0f, -1.0f, 0.0f}, {5.0f, 1.0f, 2.0f});
-    for (const auto& s : allResolutions()) expectGridCorrect(soup, s, "soup " + std::to_string(seed));
+    for (const auto& s : allResolutions())
+      expectGridCorrect(soup, s, "soup " + std::to_string(seed));
   }
 }
 
@@ -251,7 +253,8 @@ TEST(UniformGrid, VoxelCoordsInvertsTheLinearIndex) {
   UniformGrid g = buildUniformGrid(prepareTriangles(scene), sceneBounds(scene), fixedDims(7, 5, 3));
   for (int z = 0; z < 3; ++z)
     for (int y = 0; y < 5; ++y)
-      for (int x = 0; x < 7; ++x) EXPECT_EQ(g.voxelCoords(x + 7 * (y + 5 * z)), glm::ivec3(x, y, z));
+      for (int x = 0; x < 7; ++x)
+        EXPECT_EQ(g.voxelCoords(x + 7 * (y + 5 * z)), glm::ivec3(x, y, z));
 }
 
 // Exactness: a long thin triangle along the diagonal of a 10x10x1 grid has a bounding box
@@ -442,7 +445,8 @@ UniformGrid twoVoxels(const std::vector<glm::vec3>& p, double margin_rel,
 
 TEST(UniformGrid, TriangleInAVoxelBoundaryPlaneIsListedInBothVoxelsWithoutMargin) {
   std::vector<GrTriangle> tris;
-  UniformGrid g = twoVoxels({{1.0f, 0.2f, 0.2f}, {1.0f, 0.8f, 0.2f}, {1.0f, 0.5f, 0.8f}}, 0.0, tris);
+  UniformGrid g =
+      twoVoxels({{1.0f, 0.2f, 0.2f}, {1.0f, 0.8f, 0.2f}, {1.0f, 0.5f, 0.8f}}, 0.0, tris);
   ASSERT_EQ(double(g.info.minx) + double(g.info.cellx), 1.0);
   expectWellFormed(g, tris);
   EXPECT_EQ(listedIn(g, 0), std::vector<int>{0});
@@ -459,8 +463,8 @@ TEST(UniformGrid, TriangleInAVoxelBoundaryPlaneIsListedInBothVoxelsWithoutMargin
 
 TEST(UniformGrid, TriangleWithinTheMarginOfANeighbouringVoxelIsListedThere) {
   std::vector<GrTriangle> tris;
-  UniformGrid g = twoVoxels({{1.5f, 0.5f, 0.5f}, {1.6f, 0.5f, 0.5f}, {1.5f, 0.6f, 0.5f}},
-                            kGridMarginRel, tris);
+  UniformGrid g =
+      twoVoxels({{1.5f, 0.5f, 0.5f}, {1.6f, 0.5f, 0.5f}, {1.5f, 0.6f, 0.5f}}, kGridMarginRel, tris);
   const double m = g.margin;
   // margin_rel * (largest |coordinate| + diagonal) = 1e-5 * (2 + sqrt(6))
   EXPECT_NEAR(m, kGridMarginRel * (2.0 + std::sqrt(6.0)), 1e-12);
@@ -468,7 +472,8 @@ TEST(UniformGrid, TriangleWithinTheMarginOfANeighbouringVoxelIsListedThere) {
   ASSERT_NEAR(plane, 1.0, 1e-6);
   auto triangleAt = [&](double x) {
     float fx = float(x);
-    return std::vector<glm::vec3>{{fx, 0.2f, 0.2f}, {fx + 0.3f, 0.8f, 0.2f}, {fx + 0.3f, 0.5f, 0.8f}};
+    return std::vector<glm::vec3>{
+        {fx, 0.2f, 0.2f}, {fx + 0.3f, 0.8f, 0.2f}, {fx + 0.3f, 0.5f, 0.8f}};
   };
   // Nearest vertex half a margin inside voxel 1: listed in voxel 0 too.
   g = twoVoxels(triangleAt(plane + 0.5 * m), kGridMarginRel, tris);

@@ -23,7 +23,9 @@ using gridrt::RenderError;
 namespace {
 
 // Fresh per-test directories: test_support.h.
-std::string freshDir(const std::string& name) { return gridrt::test::freshDir("image_output_" + name); }
+std::string freshDir(const std::string& name) {
+  return gridrt::test::freshDir("image_output_" + name);
+}
 using gridrt::test::listDir;
 
 std::string fileBytes(const std::string& path) {
@@ -82,7 +84,8 @@ TEST(ImageOutput, PngCodesAreTheExactSrgbEncodingRounded) {
   size_t judged = 0, off = 0;
   for (size_t k = 0; k < n; ++k) {
     const double v = film.rgb[k];
-    const double code = 255.0 * (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055);
+    const double code =
+        255.0 * (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055);
     if (std::fabs(code - std::floor(code) - 0.5) < kCodeBoundaryGuard) continue;
     ++judged;
     off += std::lround(img.pixels[k] * 255.0f) != std::lround(code);
@@ -103,8 +106,10 @@ TEST(ImageOutput, JpegIsSrgbEncodedToo) {
 
 TEST(ImageOutput, ExrKeepsLinearFloatsExactly) {
   const std::string path = freshDir("exr") + "/out.exr";
-  Film film{2, 2, {0.1f, 0.5f, 1.0f, 2.75f, 1e-4f, 123.456f, -0.5f, 0.0f, 1e6f,
-                   0.333333f, 7.0f, 0.7354f}};
+  Film film{
+      2,
+      2,
+      {0.1f, 0.5f, 1.0f, 2.75f, 1e-4f, 123.456f, -0.5f, 0.0f, 1e6f, 0.333333f, 7.0f, 0.7354f}};
   gridrt::writeImage(path, film);
 
   ImageData img = gridrt::readImage(path);

@@ -33,8 +33,8 @@ void expectSuccess(const std::vector<std::string>& argv) {
 
 // Renders the default scene at 64x48 with `extra` flags to `path`.
 void render(const std::string& path, std::vector<std::string> extra) {
-  std::vector<std::string> argv{gridrtBinary(), "-q", "--width", "64", "--height", "48",
-                                "-o", path};
+  std::vector<std::string> argv{gridrtBinary(), "-q", "--width", "64",
+                                "--height",     "48", "-o",      path};
   argv.insert(argv.end(), extra.begin(), extra.end());
   expectSuccess(argv);
 }
@@ -48,8 +48,8 @@ struct Rect {
 };
 
 // A window file's data window: the window's offset and size, in an image of full size.
-void expectDataWindow(const OIIO::ImageSpec& s, int x, int y, int width, int height,
-                      int full_width, int full_height) {
+void expectDataWindow(const OIIO::ImageSpec& s, int x, int y, int width, int height, int full_width,
+                      int full_height) {
   EXPECT_EQ(s.x, x);
   EXPECT_EQ(s.y, y);
   EXPECT_EQ(s.width, width);
@@ -84,14 +84,15 @@ void expectTilesMergeToFullRender(const std::string& name, const std::vector<Rec
 }
 
 TEST(Tiles, FourTilesMergeToTheFullRenderBitForBit) {
-  expectTilesMergeToFullRender("even", {{0, 0, 32, 24}, {32, 0, 64, 24}, {0, 24, 32, 48},
-                                        {32, 24, 64, 48}}, {});
+  expectTilesMergeToFullRender(
+      "even", {{0, 0, 32, 24}, {32, 0, 64, 24}, {0, 24, 32, 48}, {32, 24, 64, 48}}, {});
 }
 
 // Uneven bounds and jittered samples: the jitter must follow the full image's pixel index.
 TEST(Tiles, UnevenTilesWithSeveralSamplesMergeBitForBit) {
-  expectTilesMergeToFullRender("jitter", {{0, 0, 23, 17}, {23, 0, 64, 17}, {0, 17, 23, 48},
-                                          {23, 17, 64, 48}}, {"--spp", "3"});
+  expectTilesMergeToFullRender("jitter",
+                               {{0, 0, 23, 17}, {23, 0, 64, 17}, {0, 17, 23, 48}, {23, 17, 64, 48}},
+                               {"--spp", "3"});
 }
 
 TEST(Tiles, WindowFileCarriesItsOffsetInTheDataWindow) {
@@ -148,9 +149,9 @@ TEST(Tiles, ATileOfAnImageTooLargeForMemoryRenders) {
   size_t lit = 0;
   for (float v : pixels) lit += v > 0.0f;
   EXPECT_GT(lit, pixels.size() / 2);  // the middle of the default scene: its back wall
-  CommandResult r = runCommand({gridrtBinary(), "-q", "--width", "65536", "--height", "65536",
-                                "--crop", "30000,30000,30064,30040", "-o",
-                                tempPath("huge_full.exr")});
+  CommandResult r =
+      runCommand({gridrtBinary(), "-q", "--width", "65536", "--height", "65536", "--crop",
+                  "30000,30000,30064,30040", "-o", tempPath("huge_full.exr")});
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("window 30000,30000,30064,30040, written full size"), std::string::npos)
       << r.err;

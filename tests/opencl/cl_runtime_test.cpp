@@ -1,13 +1,14 @@
 // ClRuntime::runWithHostThreadsAsleep: the commands `enqueue` queues have all run when it
 // returns, from any OpenMP thread count, and an exception from `enqueue` comes out of it
 // (a throw that left the parallel region inside would end the process).
+#include "cl_runtime.h"
+
 #include <gtest/gtest.h>
 #include <omp.h>
 
 #include <numeric>
 #include <vector>
 
-#include "cl_runtime.h"
 #include "errors.h"
 
 namespace {

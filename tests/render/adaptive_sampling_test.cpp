@@ -79,8 +79,8 @@ TEST_F(Adaptive, DepthCutoffTracesFewerRaysWithinABoundedError) {
   double e = rmse(all.film, fewer.film);
   std::printf("secondary rays %llu -> %llu, rmse %.5f\n", (unsigned long long)secondary_all,
               (unsigned long long)secondary_cut, e);
-  EXPECT_GT(e, 0.0);    // something was really left out
-  EXPECT_LT(e, 0.02);   // paths below 5 % throughput carry little light
+  EXPECT_GT(e, 0.0);   // something was really left out
+  EXPECT_LT(e, 0.02);  // paths below 5 % throughput carry little light
 }
 
 }  // namespace

@@ -48,13 +48,14 @@ TEST_F(HeadlightShading, EachPixelIsItsHitsBaseColourTimesCosineOrTheBackground)
   for (int y = 0; y < settings.height; ++y)
     for (int x = 0; x < settings.width; ++x) {
       const size_t p = size_t(y) * settings.width + x;
-      const glm::vec3 got(frame.film.rgb[3 * p], frame.film.rgb[3 * p + 1], frame.film.rgb[3 * p + 2]);
+      const glm::vec3 got(frame.film.rgb[3 * p], frame.film.rgb[3 * p + 1],
+                          frame.film.rgb[3 * p + 2]);
       const int prim = int(frame.aovs.primid[p]);
       glm::vec3 want = settings.background;
       if (prim >= 0) {
         const GrRay r = cameraRay(camera, settings.width, settings.height, x, y, 0.5f, 0.5f);
-        const HitSurface h = surfaceOfHit(smooth.data(), geometric.data(), prim, r.ox, r.oy,
-                                          r.oz, r.dx, r.dy, r.dz, frame.aovs.depth[p]);
+        const HitSurface h = surfaceOfHit(smooth.data(), geometric.data(), prim, r.ox, r.oy, r.oz,
+                                          r.dx, r.dy, r.dz, frame.aovs.depth[p]);
         const glm::vec3& base = scene_.materials[scene_.material_of[prim]].base_color;
         want = base * std::fabs(glm::dot(glm::vec3(h.nx, h.ny, h.nz), glm::vec3(r.dx, r.dy, r.dz)));
         ++hits;

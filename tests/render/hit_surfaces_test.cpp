@@ -2,6 +2,8 @@
 // (host/render/hit_surfaces.h), against the one-hit formulation they replace: bit for bit, on
 // random hits of random triangles (degenerate ones and hits without vertex normals
 // included) and every kind of light.
+#include "hit_surfaces.h"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -9,7 +11,6 @@
 #include <random>
 #include <vector>
 
-#include "hit_surfaces.h"
 #include "whitted_shading.h"
 
 namespace {
@@ -113,14 +114,15 @@ TEST_P(HitSurfaces, LanesEqualTheOneHitShadingBitForBit) {
     computeSurfaces(smooth ? shading.data() : nullptr, geometric.data(), s);
     for (int k = 0; k < kSurfaceLanes; ++k) {
       const int t = s.tri[k];
-      OneHit h = oneHit(&scene.positions[3 * t], smooth ? &scene.normals[3 * t] : nullptr,
-                        geometric[t], {s.ox[k], s.oy[k], s.oz[k]}, {s.dx[k], s.dy[k], s.dz[k]},
-                        s.t[k]);
-      const float lanes[] = {s.px[k], s.py[k], s.pz[k], s.nx[k], s.ny[k], s.nz[k],
-                             s.gx[k], s.gy[k], s.gz[k]};
+      OneHit h =
+          oneHit(&scene.positions[3 * t], smooth ? &scene.normals[3 * t] : nullptr, geometric[t],
+                 {s.ox[k], s.oy[k], s.oz[k]}, {s.dx[k], s.dy[k], s.dz[k]}, s.t[k]);
+      const float lanes[] = {s.px[k], s.py[k], s.pz[k], s.nx[k], s.ny[k],
+                             s.nz[k], s.gx[k], s.gy[k], s.gz[k]};
       const float one[] = {h.p.x, h.p.y, h.p.z, h.n.x, h.n.y, h.n.z, h.g.x, h.g.y, h.g.z};
       for (int c = 0; c < 9; ++c)
-        ASSERT_TRUE(sameBits(lanes[c], one[c])) << "block " << block << " lane " << k << " value " << c;
+        ASSERT_TRUE(sameBits(lanes[c], one[c]))
+            << "block " << block << " lane " << k << " value " << c;
       ASSERT_EQ(bool(s.backface[k]), h.backface);
     }
     for (const Light& light : lights) {
@@ -145,7 +147,8 @@ TEST_P(HitSurfaces, LanesEqualTheOneHitShadingBitForBit) {
                                l.ex[k], l.ey[k], l.ez[k], l.cos_theta[k]};
         const float one[] = {to.x, to.y, to.z, distance, e.x, e.y, e.z, cos_theta};
         for (int c = 0; c < 8; ++c)
-          ASSERT_TRUE(sameBits(lanes[c], one[c])) << "block " << block << " lane " << k << " value " << c;
+          ASSERT_TRUE(sameBits(lanes[c], one[c]))
+              << "block " << block << " lane " << k << " value " << c;
       }
     }
   }

@@ -1,11 +1,11 @@
 // The shading order of the primary generation (host/render/pixel_blocks.h): every pixel once,
 // 16 consecutive entries one 4x4 block where the window allows it.
+#include "pixel_blocks.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <vector>
-
-#include "pixel_blocks.h"
 
 namespace {
 
@@ -46,8 +46,8 @@ TEST(PixelBlocks, EdgeBlocksAreClippedToTheWindow) {
   // 6 x 5: blocks 4x4, 2x4, 4x1, 2x1, in that order.
   std::vector<int> order;
   pixelBlockOrder(6, 5, order);
-  const std::vector<int> expected = {0,  1,  2,  3,  6,  7,  8,  9,  12, 13, 14, 15, 18, 19, 20,
-                                     21, 4,  5,  10, 11, 16, 17, 22, 23, 24, 25, 26, 27, 28, 29};
+  const std::vector<int> expected = {0,  1, 2, 3,  6,  7,  8,  9,  12, 13, 14, 15, 18, 19, 20,
+                                     21, 4, 5, 10, 11, 16, 17, 22, 23, 24, 25, 26, 27, 28, 29};
   EXPECT_EQ(order, expected);
 }
 

@@ -60,7 +60,8 @@ TEST(RayOffset, SpawnedRaysNeverHitTheirOwnTriangleAtAnyScale) {
       float w1 = U01(rng), w2 = U01(rng);
       if (w1 + w2 > 1.0f) w1 = 1.0f - w1, w2 = 1.0f - w2;
       glm::vec3 target = a + w1 * e1 + w2 * e2;
-      glm::vec3 eye = target + float(3.0 * scale) * hemisphereDirection(ng, 0.3f + 0.7f * U01(rng), 6.2832f * U01(rng));
+      glm::vec3 eye = target + float(3.0 * scale) * hemisphereDirection(ng, 0.3f + 0.7f * U01(rng),
+                                                                        6.2832f * U01(rng));
       glm::vec3 d = glm::normalize(target - eye);
       float t, u, v;
       if (!gr_intersect_mt(eye.x, eye.y, eye.z, d.x, d.y, d.z, a.x, a.y, a.z, e1.x, e1.y, e1.z,
@@ -70,13 +71,13 @@ TEST(RayOffset, SpawnedRaysNeverHitTheirOwnTriangleAtAnyScale) {
       glm::vec3 n = glm::dot(ng, d) > 0.0f ? -ng : ng;  // facing the camera
       for (int j = 0; j < 16; ++j) {
         float cos_theta = std::pow(10.0f, -4.0f * U01(rng));  // 1e-4 .. 1
-        float side = j % 2 ? -1.0f : 1.0f;                      // reflection / refraction
+        float side = j % 2 ? -1.0f : 1.0f;                    // reflection / refraction
         glm::vec3 dir = hemisphereDirection(side * n, cos_theta, 6.2832f * U01(rng));
         for (int m = 0; m < 2; ++m) {
           glm::vec3 o = offsetRayOrigin(p, side * n, eye, m ? fixed : robust);
           float th;
-          self[m] += gr_intersect_mt(o.x, o.y, o.z, dir.x, dir.y, dir.z, a.x, a.y, a.z, e1.x,
-                                     e1.y, e1.z, e2.x, e2.y, e2.z, &th, &u, &v) &&
+          self[m] += gr_intersect_mt(o.x, o.y, o.z, dir.x, dir.y, dir.z, a.x, a.y, a.z, e1.x, e1.y,
+                                     e1.z, e2.x, e2.y, e2.z, &th, &u, &v) &&
                      th > 0.0f;
         }
         ++rays;
@@ -253,7 +254,8 @@ TEST_F(ShadowSweep, ShadowRaysAtAConcaveCornerAreNotBlockedByTheOtherSurface) {
         std::vector<GrRay> primary;
         for (int k = 0; k < 4000; ++k) {
           const double near = std::pow(10.0, -1.0 - 6.0 * (k / 2) / 2000.0);  // to the seam
-          const glm::dvec3 target = k % 2 ? glm::dvec3(-near, 0, U(rng)) : glm::dvec3(0, near, U(rng));
+          const glm::dvec3 target =
+              k % 2 ? glm::dvec3(-near, 0, U(rng)) : glm::dvec3(0, near, U(rng));
           const glm::vec3 d = glm::normalize(X(target) - eye);
           primary.push_back(GrRay{eye.x, eye.y, eye.z, 0.0f, d.x, d.y, d.z, kInf});
         }
@@ -269,8 +271,8 @@ TEST_F(ShadowSweep, ShadowRaysAtAConcaveCornerAreNotBlockedByTheOtherSurface) {
           const glm::vec3 start = offsetRayOrigin(p, n, eye, robust), to = light - p;
           const float distance = glm::length(to);
           const glm::vec3 d = to / distance;
-          shadow.push_back(GrRay{start.x, start.y, start.z, rayOffsetDistance(p, eye, robust),
-                                 d.x, d.y, d.z, distance});
+          shadow.push_back(GrRay{start.x, start.y, start.z, rayOffsetDistance(p, eye, robust), d.x,
+                                 d.y, d.z, distance});
         }
         std::vector<GrHit> blocked;
         brute.intersect(shadow, HitMode::AnyHit, blocked, nullptr);

@@ -153,7 +153,8 @@ TEST_F(RenderPasses, RepeatedFramesOfOneRendererAreEqual) {
     Renderer plain(scene_, scene_.camera, gridrt, uniform);
     plain.render(first);
     plain.render(third);
-    expectSameFrame(first, third, primary_only ? "headlight, uniform again" : "Whitted, uniform again");
+    expectSameFrame(first, third,
+                    primary_only ? "headlight, uniform again" : "Whitted, uniform again");
   }
 }
 

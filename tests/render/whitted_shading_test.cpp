@@ -1,5 +1,7 @@
 // Shading against closed-form values: Lambert under a point light, a mirror showing a
 // known colour, Snell's law and Fresnel through a glass slab, total internal reflection.
+#include "whitted_shading.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,7 +15,6 @@
 #include "cl_runtime.h"
 #include "prepared_triangles.h"
 #include "renderer.h"
-#include "whitted_shading.h"
 
 namespace gridrt {
 namespace {
@@ -104,8 +105,8 @@ TEST_F(Shading, MirrorShowsTheColourItReflects) {
   Camera camera;
   camera.orthographic = true;
   camera.ymag = 0.5f;
-  camera.world = glm::inverse(glm::lookAt(glm::vec3(0, 4, 0), glm::vec3(0, 0, 0),
-                                          glm::vec3(0, 0, -1)));
+  camera.world =
+      glm::inverse(glm::lookAt(glm::vec3(0, 4, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, -1)));
   RenderSettings settings;
   settings.width = 16;
   settings.height = 16;
@@ -162,8 +163,18 @@ TEST(NextFloat, EqualsNextafterEverywhere) {
   };
   const float kMax = std::numeric_limits<float>::max();
   const float kDenorm = std::numeric_limits<float>::denorm_min();
-  std::vector<float> values = {0.0f, -0.0f, kDenorm, -kDenorm, 1.0f, -1.0f, kMax, -kMax,
-                               INFINITY, -INFINITY, NAN, std::numeric_limits<float>::min(),
+  std::vector<float> values = {0.0f,
+                               -0.0f,
+                               kDenorm,
+                               -kDenorm,
+                               1.0f,
+                               -1.0f,
+                               kMax,
+                               -kMax,
+                               INFINITY,
+                               -INFINITY,
+                               NAN,
+                               std::numeric_limits<float>::min(),
                                -std::numeric_limits<float>::min()};
   std::mt19937 rng(3);
   for (int k = 0; k < 1000000; ++k) {
@@ -271,8 +282,8 @@ TEST_F(Shading, ACornerSeenThroughANarrowLensIsLitUpToTheSeam) {
     settings.max_depth = 0;
     settings.ambient = 0.05f;
     for (bool watertight : {false, true}) {
-      const std::string where = std::string(watertight ? "watertight" : "mt") + " at " +
-                                std::to_string(view.at);
+      const std::string where =
+          std::string(watertight ? "watertight" : "mt") + " at " + std::to_string(view.at);
       const KernelOptions kernel{watertight};
       BruteIntersector brute(*runtime_, prepareTriangles(scene, kernel), kernel);
       Renderer renderer(scene, camera, brute, settings);

@@ -51,8 +51,8 @@ Hit closestHit(const Scene& scene, glm::vec3 o, glm::vec3 d) {
     glm::vec3 v0 = scene.positions[3 * t];
     glm::vec3 e1 = scene.positions[3 * t + 1] - v0, e2 = scene.positions[3 * t + 2] - v0;
     float th, u, v;
-    if (gr_intersect_mt(o.x, o.y, o.z, d.x, d.y, d.z, v0.x, v0.y, v0.z, e1.x, e1.y, e1.z,
-                        e2.x, e2.y, e2.z, &th, &u, &v) &&
+    if (gr_intersect_mt(o.x, o.y, o.z, d.x, d.y, d.z, v0.x, v0.y, v0.z, e1.x, e1.y, e1.z, e2.x,
+                        e2.y, e2.z, &th, &u, &v) &&
         th > kTMin && th < hit.t) {
       hit.found = true;
       hit.t = th;
@@ -145,8 +145,8 @@ TEST(DefaultScene, HasMirrorGlassDiffuseAndColouredWallsInUse) {
            glm::all(glm::greaterThan(m.base_color, glm::vec3(0.9f)));
   });
   int glass = findMaterial(scene, [](const Material& m) {
-    return m.transmission == 1.0f && m.ior == 1.5f && m.roughness == 0.0f &&
-           m.metallic == 0.0f && m.base_color == glm::vec3(1.0f);
+    return m.transmission == 1.0f && m.ior == 1.5f && m.roughness == 0.0f && m.metallic == 0.0f &&
+           m.base_color == glm::vec3(1.0f);
   });
   int diffuse = findMaterial(scene, [](const Material& m) {
     return m.metallic == 0.0f && m.transmission == 0.0f && m.roughness > 0.0f &&
@@ -214,10 +214,10 @@ TEST(DefaultScene, RaysAimedAtTheSeamsOfTheRoomHitAWall) {
   const float w = DefaultBox::kHalfWidth, h = DefaultBox::kHeight, d = DefaultBox::kDepth;
   // Each seam from one corner to another, sampled between them.
   const glm::vec3 seams[8][2] = {
-      {{-w, 0, -d}, {w, 0, -d}}, {{-w, h, -d}, {w, h, -d}},  // back wall with floor, ceiling
-      {{-w, 0, -d}, {-w, h, -d}}, {{w, 0, -d}, {w, h, -d}},  // back wall with the side walls
-      {{-w, 0, -d}, {-w, 0, 0}}, {{w, 0, -d}, {w, 0, 0}},    // floor with the side walls
-      {{-w, h, -d}, {-w, h, 0}}, {{w, h, -d}, {w, h, 0}}};   // ceiling with the side walls
+      {{-w, 0, -d}, {w, 0, -d}},  {{-w, h, -d}, {w, h, -d}},  // back wall with floor, ceiling
+      {{-w, 0, -d}, {-w, h, -d}}, {{w, 0, -d}, {w, h, -d}},   // back wall with the side walls
+      {{-w, 0, -d}, {-w, 0, 0}},  {{w, 0, -d}, {w, 0, 0}},    // floor with the side walls
+      {{-w, h, -d}, {-w, h, 0}},  {{w, h, -d}, {w, h, 0}}};   // ceiling with the side walls
   int aimed = 0, leaks = 0;
   for (const auto& seam : seams)
     for (int k = 1; k < 4000; ++k) {
@@ -239,8 +239,7 @@ TEST(DefaultScene, EverySurfaceSeenFromInsideFacesTheViewer) {
     Hit hit = closestHit(scene, kBoxCentre, d);
     if (!hit.found) continue;
     EXPECT_LT(glm::dot(geometricNormal(scene, hit.triangle), d), 0.0f)
-        << scene.materials[scene.material_of[hit.triangle]].name << " triangle "
-        << hit.triangle;
+        << scene.materials[scene.material_of[hit.triangle]].name << " triangle " << hit.triangle;
   }
 }
 
@@ -457,8 +456,8 @@ TEST(GltfWriter, DefaultSceneRoundTripsThroughGltf) {
   ASSERT_FALSE(text.empty());
   EXPECT_EQ(text[0], '{');
   EXPECT_NE(text.find("data:application/octet-stream;base64,"), std::string::npos);
-  for (const char* ext : {"KHR_lights_punctual", "KHR_materials_transmission",
-                          "KHR_materials_volume"})
+  for (const char* ext :
+       {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_volume"})
     EXPECT_NE(text.find(ext), std::string::npos) << ext;
   expectRoundTrip(scene, gridrt::loadGltfFile(path));
 }

@@ -26,8 +26,7 @@ constexpr int kUByte = 5121, kUShort = 5123, kUInt = 5125, kFloat = 5126;
 constexpr float kTol = 1e-5f;
 
 std::string base64(const std::string& bytes) {
-  static const char* kDigits =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
   size_t i = 0;
   for (; i + 2 < bytes.size(); i += 3) {
@@ -119,8 +118,8 @@ std::string primitive(int position, int indices = -1, int material = -1, int mod
 // One mesh of the given primitives on one root node.
 std::string singleMesh(const std::string& primitives, const std::string& extra = "") {
   return "\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
-         "\"meshes\":[{\"primitives\":[" + primitives + "]}]" +
-         (extra.empty() ? "" : "," + extra);
+         "\"meshes\":[{\"primitives\":[" +
+         primitives + "]}]" + (extra.empty() ? "" : "," + extra);
 }
 
 Scene loadJson(const std::string& json, const GltfLoadOptions& options = {}) {
@@ -138,10 +137,10 @@ std::string errorOf(const std::function<void()>& f) {
   return "<no error>";
 }
 
-#define EXPECT_SCENE_ERROR(statement, substring)                                  \
-  do {                                                                             \
-    const std::string message_ = errorOf([&] { statement; });                      \
-    EXPECT_NE(message_.find(substring), std::string::npos) << message_;            \
+#define EXPECT_SCENE_ERROR(statement, substring)                                       \
+  do {                                                                                 \
+    const std::string message_ = errorOf([&] { statement; });                          \
+    EXPECT_NE(message_.find(substring), std::string::npos) << message_;                \
     EXPECT_EQ(message_.find('\n'), std::string::npos) << "not one line: " << message_; \
   } while (0)
 
@@ -240,7 +239,8 @@ TEST(GltfLoader, AppliesTrsParentTimesMatrixChild) {
       "{\"translation\":[1,2,3],\"rotation\":[0,0.70710678,0,0.70710678],\"scale\":[2,2,2],"
       "\"children\":[1]},"
       "{\"mesh\":0,\"matrix\":[1,0,0,0, 0,1,0,0, 0,0,1,0, 1,0,0,1]}],"
-      "\"meshes\":[{\"primitives\":[" + primitive(pos) + "]}]";
+      "\"meshes\":[{\"primitives\":[" +
+      primitive(pos) + "]}]";
   Scene s = loadJson(b.json(rest));
   ASSERT_EQ(s.triangleCount(), 1u);
   // v -> child (+1 x) -> scale 2 -> rotate x->-z, y->y -> translate (1,2,3).
@@ -256,7 +256,8 @@ TEST(GltfLoader, TransformsNormalsByInverseTranspose) {
   int nrm = b.vec3({1, 1, 0, 1, 1, 0, 1, 1, 0});
   const std::string rest =
       "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0,\"scale\":[4,1,1]}],"
-      "\"meshes\":[{\"primitives\":[" + primitive(pos, -1, -1, 4, nrm) + "]}]";
+      "\"meshes\":[{\"primitives\":[" +
+      primitive(pos, -1, -1, 4, nrm) + "]}]";
   Scene s = loadJson(b.json(rest));
   ASSERT_EQ(s.normals.size(), 3u);
   expectNear(s.normals[0], glm::normalize(glm::vec3(0.25f, 1, 0)));
@@ -267,7 +268,8 @@ TEST(GltfLoader, KeepsCounterClockwiseWindingUnderMirroringTransform) {
   int pos = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});  // counter-clockwise seen from +Z
   const std::string rest =
       "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0,\"scale\":[-1,1,1]}],"
-      "\"meshes\":[{\"primitives\":[" + primitive(pos) + "]}]";
+      "\"meshes\":[{\"primitives\":[" +
+      primitive(pos) + "]}]";
   Scene s = loadJson(b.json(rest));
   ASSERT_EQ(s.triangleCount(), 1u);
   glm::vec3 n = glm::cross(s.positions[1] - s.positions[0], s.positions[2] - s.positions[0]);
@@ -285,8 +287,11 @@ TEST(GltfLoader, NumbersTrianglesByNodesDepthFirstThenPrimitives) {
       "{\"name\":\"last\",\"mesh\":1,\"translation\":[0,0,4]},"
       "{\"name\":\"child\",\"mesh\":1,\"translation\":[0,0,-1]},"
       "{\"name\":\"first\",\"mesh\":0,\"translation\":[0,0,1],\"children\":[1]}],"
-      "\"meshes\":[{\"primitives\":[" + primitive(tri) + "," + primitive(tri_y) + "]},"
-      "{\"primitives\":[" + primitive(tri) + "]}]";
+      "\"meshes\":[{\"primitives\":[" +
+      primitive(tri) + "," + primitive(tri_y) +
+      "]},"
+      "{\"primitives\":[" +
+      primitive(tri) + "]}]";
   Scene s = loadJson(b.json(rest));
   ASSERT_EQ(s.triangleCount(), 4u);
   expectNear(s.positions[0], {0, 0, 1});   // node "first", primitive 0
@@ -300,8 +305,8 @@ TEST(GltfLoader, UsesAllRootNodesWhenThereIsNoScene) {
   int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
   const std::string rest =
       "\"nodes\":[{\"children\":[2]},{\"mesh\":0,\"translation\":[0,0,5]},"
-      "{\"mesh\":0,\"translation\":[0,0,7]}],\"meshes\":[{\"primitives\":[" + primitive(tri) +
-      "]}]";
+      "{\"mesh\":0,\"translation\":[0,0,7]}],\"meshes\":[{\"primitives\":[" +
+      primitive(tri) + "]}]";
   Scene s = loadJson(b.json(rest));
   ASSERT_EQ(s.triangleCount(), 2u);
   EXPECT_FLOAT_EQ(s.positions[0].z, 7.0f);  // root 0's child first
@@ -347,7 +352,8 @@ TEST(GltfLoader, DropsTrianglesWithNanVertexAndCountsThem) {
 TEST(GltfLoader, DropsZeroAreaTrianglesWithACount) {
   GltfBuilder b;
   // Collinear, a repeated vertex, and one real triangle.
-  int pos = b.vec3({0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0});
+  int pos =
+      b.vec3({0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0});
   Scene s = loadJson(b.json(singleMesh(primitive(pos))));
   EXPECT_EQ(s.triangleCount(), 1u);
   EXPECT_EQ(s.dropped_zero_area, 2u);
@@ -370,17 +376,18 @@ TEST(GltfLoader, ReadsPerspectiveCameraWithRigidWorldFrame) {
       "\"rotation\":[0,0.70710678,0,0.70710678]}],"
       "\"cameras\":[{\"name\":\"main\",\"type\":\"perspective\",\"perspective\":"
       "{\"yfov\":0.5,\"aspectRatio\":1.5,\"znear\":0.1}}],"
-      "\"meshes\":[{\"primitives\":[" + primitive(tri) + "]}]";
+      "\"meshes\":[{\"primitives\":[" +
+      primitive(tri) + "]}]";
   Scene s = loadJson(b.json(rest));
   ASSERT_TRUE(s.has_camera);
   EXPECT_EQ(s.camera.name, "main");
   EXPECT_FALSE(s.camera.orthographic);
   EXPECT_FLOAT_EQ(s.camera.yfov, 0.5f);
   EXPECT_FLOAT_EQ(s.camera.aspect, 1.5f);
-  expectNear(glm::vec3(s.camera.world[3]), {0, 0, 6});          // eye: 3 * (0,0,2)
-  expectNear(glm::vec3(s.camera.world[0]), {0, 0, -1});         // +90 deg about Y: x -> -z
+  expectNear(glm::vec3(s.camera.world[3]), {0, 0, 6});   // eye: 3 * (0,0,2)
+  expectNear(glm::vec3(s.camera.world[0]), {0, 0, -1});  // +90 deg about Y: x -> -z
   expectNear(glm::vec3(s.camera.world[1]), {0, 1, 0});
-  expectNear(glm::vec3(s.camera.world[2]), {1, 0, 0});          // looks down -Z = world -X
+  expectNear(glm::vec3(s.camera.world[2]), {1, 0, 0});  // looks down -Z = world -X
   EXPECT_FALSE(s.has_lights);
 }
 
@@ -391,7 +398,8 @@ TEST(GltfLoader, ReadsOrthographicCameraWithoutAspect) {
       "\"scenes\":[{\"nodes\":[0,1]}],\"nodes\":[{\"mesh\":0},{\"camera\":0}],"
       "\"cameras\":[{\"type\":\"orthographic\",\"orthographic\":"
       "{\"xmag\":2,\"ymag\":1.5,\"znear\":0,\"zfar\":10}}],"
-      "\"meshes\":[{\"primitives\":[" + primitive(tri) + "]}]";
+      "\"meshes\":[{\"primitives\":[" +
+      primitive(tri) + "]}]";
   Scene s = loadJson(b.json(rest));
   ASSERT_TRUE(s.has_camera);
   EXPECT_TRUE(s.camera.orthographic);
@@ -410,7 +418,8 @@ std::string twoCameraScene(GltfBuilder& b) {
       "\"perspective\":{\"yfov\":0.7,\"znear\":0.1}},"
       "{\"name\":\"cam_b\",\"type\":\"perspective\","
       "\"perspective\":{\"yfov\":0.9,\"znear\":0.1}}],"
-      "\"meshes\":[{\"primitives\":[" + primitive(tri) + "]}]");
+      "\"meshes\":[{\"primitives\":[" +
+      primitive(tri) + "]}]");
 }
 
 TEST(GltfLoader, PicksFirstCameraByDefaultAndNamedCameraOnRequest) {
@@ -444,7 +453,8 @@ TEST(GltfLoader, ReadsPunctualLightsWithWhiteDefaultColor) {
       // Directional rotated +90 deg about Y: local -Z points to world -X.
       "{\"rotation\":[0,0.70710678,0,0.70710678],"
       "\"extensions\":{\"KHR_lights_punctual\":{\"light\":2}}}],"
-      "\"meshes\":[{\"primitives\":[" + primitive(tri) + "]}]";
+      "\"meshes\":[{\"primitives\":[" +
+      primitive(tri) + "]}]";
   Scene s = loadJson(b.json(rest));
   ASSERT_TRUE(s.has_lights);
   ASSERT_EQ(s.lights.size(), 3u);
@@ -486,10 +496,9 @@ TEST(GltfLoader, MapsMaterialFactorsAndExtensions) {
       "\"KHR_materials_volume\":{\"attenuationColor\":[0.5,0.6,0.7],\"attenuationDistance\":2},"
       "\"KHR_materials_emissive_strength\":{\"emissiveStrength\":4}}},"
       "{\"name\":\"plain\",\"extensions\":{\"KHR_materials_volume\":{\"thicknessFactor\":1}}}]";
-  Scene s = loadJson(b.json(singleMesh(
-      primitive(tri, -1, 1) + "," + primitive(tri) + "," + primitive(tri, -1, 0) + "," +
-          primitive(tri),
-      materials)));
+  Scene s = loadJson(b.json(singleMesh(primitive(tri, -1, 1) + "," + primitive(tri) + "," +
+                                           primitive(tri, -1, 0) + "," + primitive(tri),
+                                       materials)));
   ASSERT_EQ(s.materials.size(), 3u);  // two from the file, one default appended once
   EXPECT_EQ(s.material_of, (std::vector<int>{1, 2, 0, 2}));
 
@@ -526,8 +535,8 @@ TEST(GltfLoader, WarnsOnceThatTexturesAreIgnored) {
       "\"textures\":[{\"source\":0}],"
       "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}},"
       "{\"normalTexture\":{\"index\":0}}]";
-  Scene s = loadJson(b.json(singleMesh(primitive(tri, -1, 0) + "," + primitive(tri, -1, 1),
-                                       extra)));
+  Scene s =
+      loadJson(b.json(singleMesh(primitive(tri, -1, 0) + "," + primitive(tri, -1, 1), extra)));
   EXPECT_EQ(std::count(s.warnings.begin(), s.warnings.end(), "textures are ignored"), 1);
 }
 
@@ -590,7 +599,8 @@ TEST(GltfLoader, RejectsNodeCycle) {
   int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
   const std::string rest =
       "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0,\"children\":[1]},"
-      "{\"children\":[0]}],\"meshes\":[{\"primitives\":[" + primitive(tri) + "]}]";
+      "{\"children\":[0]}],\"meshes\":[{\"primitives\":[" +
+      primitive(tri) + "]}]";
   EXPECT_SCENE_ERROR(loadJson(b.json(rest)), "node 0: the node hierarchy has a cycle");
 }
 
@@ -599,7 +609,8 @@ TEST(GltfLoader, KeepsMessagesOnOneLineDespiteControlCharactersInNames) {
   int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
   const std::string rest =
       "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"name\":\"evil\\nname\\u001b\",\"mesh\":0,"
-      "\"children\":[0]}],\"meshes\":[{\"primitives\":[" + primitive(tri) + "]}]";
+      "\"children\":[0]}],\"meshes\":[{\"primitives\":[" +
+      primitive(tri) + "]}]";
   EXPECT_SCENE_ERROR(loadJson(b.json(rest)),
                      "node 0 'evil; name?': the node hierarchy has a cycle");
 }
@@ -630,8 +641,9 @@ TEST(GltfLoader, RejectsJsonSyntaxError) {
 }
 
 TEST(GltfLoader, RejectsAbsurdJsonNesting) {
-  const std::string json = "{\"asset\":{\"version\":\"2.0\"},\"extras\":" +
-                           std::string(100000, '[') + std::string(100000, ']') + "}";
+  const std::string json =
+      "{\"asset\":{\"version\":\"2.0\"},\"extras\":" + std::string(100000, '[') +
+      std::string(100000, ']') + "}";
   EXPECT_SCENE_ERROR(loadJson(json), "JSON nested deeper than");
 }
 
@@ -668,8 +680,8 @@ TEST(GltfLoader, LoadsGlbFromMemoryByMagic) {
                            std::to_string(b.bin().size()) + "}]," + b.viewsAndAccessors() + "," +
                            singleMesh(primitive(pos, idx)) + "}";
   const std::string glb = makeGlb(json, b.bin());
-  expectQuad(loadGltfFromMemory(reinterpret_cast<const unsigned char*>(glb.data()), glb.size(),
-                                "", "memory.glb"));
+  expectQuad(loadGltfFromMemory(reinterpret_cast<const unsigned char*>(glb.data()), glb.size(), "",
+                                "memory.glb"));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -687,7 +699,8 @@ std::string sceneWithBufferUri(const std::string& name, const std::string& uri) 
   const std::string json =
       "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":36,\"uri\":\"" + uri +
       "\"}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],\"accessors\":[{\"bufferView\":0,"
-      "\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"}]," + singleMesh(primitive(0)) + "}";
+      "\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"}]," +
+      singleMesh(primitive(0)) + "}";
   const std::string path = (root / "scene" / "scene.gltf").string();
   writeFile(path, json);
   return path;
@@ -711,8 +724,7 @@ TEST(GltfLoader, RejectsSymlinkLeavingSceneFolder) {
   const std::string path = sceneWithBufferUri("ext_link", "link.bin");
   const fs::path dir = fs::path(path).parent_path();
   fs::create_symlink(dir.parent_path() / "outside.bin", dir / "link.bin");
-  EXPECT_SCENE_ERROR(loadGltfFile(path),
-                     "external URI 'link.bin' leads outside the scene folder");
+  EXPECT_SCENE_ERROR(loadGltfFile(path), "external URI 'link.bin' leads outside the scene folder");
 }
 
 TEST(GltfLoader, RefusesExternalFilesWithoutBaseFolder) {
@@ -739,8 +751,8 @@ TEST(GltfLoader, LoadsSharedLoaderTestScene) {
   EXPECT_FLOAT_EQ(s.lights[0].intensity, 40.0f);
   // Order: bunny (948, material "default"), cube_a (12), cube_b (12), triangle (2, "red").
   EXPECT_EQ(s.materials[size_t(s.material_of[0])].name, "default");
-  EXPECT_EQ(s.materials[size_t(s.material_of[948])].name, "red");   // cube primitive 0
-  EXPECT_EQ(s.materials[size_t(s.material_of[973])].name, "red");   // the triangle
+  EXPECT_EQ(s.materials[size_t(s.material_of[948])].name, "red");  // cube primitive 0
+  EXPECT_EQ(s.materials[size_t(s.material_of[973])].name, "red");  // the triangle
 }
 
 TEST(GltfLoader, LoadsSharedBunnyAndOrientationTest) {

@@ -33,7 +33,6 @@ class Conformance : public ::testing::Test {
     runtime_ = std::make_unique<ClRuntime>("");
   }
 
-
   // Runs every grid intersector at each setting against brute force on `rays`.
   // With `view`, the rays are a pinhole camera's and the footprint-binned primary path
   // of GridRT (intersectPrimary) is checked too.
@@ -96,8 +95,8 @@ class Conformance : public ::testing::Test {
     one.dims = {1, 1, 1};
     three.dims = {3, 3, 3};
     // "Very fine": four times the auto resolution per axis (64x the voxels).
-    fine.dims = glm::min(autoGridResolution(b, triangles, kDefaultGridDensity) * 4,
-                         glm::ivec3(160));
+    fine.dims =
+        glm::min(autoGridResolution(b, triangles, kDefaultGridDensity) * 4, glm::ivec3(160));
     return {one, three, automatic, fine};
   }
 
@@ -138,28 +137,28 @@ class Conformance : public ::testing::Test {
         {b.center() + glm::vec3(0.1f, 0.8f, 0.2f) * size, 2e-3f * size},
         {b.center(), 1e-4f * size}};
     for (const auto& [light, offset] : cases) {
-        std::vector<GrRay> rays = shadowRays(camera, camera_hits, light, offset);
-        brute.intersect(rays, HitMode::Closest, want, nullptr);
-        for (const GridSettings& settings : grids) {
-          UniformGrid grid = buildUniformGrid(tris, b, settings);
-          std::string where = label + " light (" + std::to_string(light.x) + ", " +
-                              std::to_string(light.y) + ", " + std::to_string(light.z) +
-                              ") offset " + std::to_string(offset) + " grid " +
-                              std::to_string(grid.info.nx) + "x" + std::to_string(grid.info.ny) +
-                              "x" + std::to_string(grid.info.nz);
-          // As the renderer calls it: small batches fall back to the lists.
-          GridRtIntersector plain(*runtime_, grid, PeInterrupt::Off);
-          plain.intersectTowardsPoint(light, rays, HitMode::Closest, got);
-          EXPECT_EQ(test::hitMismatches(want, got, where + " towards the light"), 0u);
-          GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
-          gridrt.forceLightBundles();
-          gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
-          EXPECT_EQ(test::hitMismatches(want, got, where + " light bundles"), 0u);
-          gridrt.intersectTowardsPoint(light, rays, HitMode::AnyHit, got);
-          size_t differ = 0;
-          for (size_t i = 0; i < rays.size(); ++i) differ += (got[i].prim >= 0) != (want[i].prim >= 0);
-          EXPECT_EQ(differ, 0u) << where << " light bundles any-hit";
-        }
+      std::vector<GrRay> rays = shadowRays(camera, camera_hits, light, offset);
+      brute.intersect(rays, HitMode::Closest, want, nullptr);
+      for (const GridSettings& settings : grids) {
+        UniformGrid grid = buildUniformGrid(tris, b, settings);
+        std::string where = label + " light (" + std::to_string(light.x) + ", " +
+                            std::to_string(light.y) + ", " + std::to_string(light.z) + ") offset " +
+                            std::to_string(offset) + " grid " + std::to_string(grid.info.nx) + "x" +
+                            std::to_string(grid.info.ny) + "x" + std::to_string(grid.info.nz);
+        // As the renderer calls it: small batches fall back to the lists.
+        GridRtIntersector plain(*runtime_, grid, PeInterrupt::Off);
+        plain.intersectTowardsPoint(light, rays, HitMode::Closest, got);
+        EXPECT_EQ(test::hitMismatches(want, got, where + " towards the light"), 0u);
+        GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
+        gridrt.forceLightBundles();
+        gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
+        EXPECT_EQ(test::hitMismatches(want, got, where + " light bundles"), 0u);
+        gridrt.intersectTowardsPoint(light, rays, HitMode::AnyHit, got);
+        size_t differ = 0;
+        for (size_t i = 0; i < rays.size(); ++i)
+          differ += (got[i].prim >= 0) != (want[i].prim >= 0);
+        EXPECT_EQ(differ, 0u) << where << " light bundles any-hit";
+      }
     }
   }
 
@@ -189,8 +188,7 @@ TEST_F(Conformance, BunnyRes4AtThePapersGridsMatchesBruteOnEveryPixel) {
   }
   grids.push_back(GridSettings{});
   PinholeView view = PinholeView::of(scene.camera, 320, 240, PixelWindow{});
-  expectAllAgree(tris, sceneBounds(scene), cameraRays(scene, 320, 240), grids, "bunny_res4",
-                 &view);
+  expectAllAgree(tris, sceneBounds(scene), cameraRays(scene, 320, 240), grids, "bunny_res4", &view);
 }
 
 // Phase 2's per-ray diagnostics on the list path, where each thread picks its rays' lanes
@@ -262,8 +260,7 @@ TEST_P(SharedScenes, EveryPixelMatchesBruteAtEveryGrid) {
 INSTANTIATE_TEST_SUITE_P(Conformance, SharedScenes,
                          ::testing::Values("bunny_res4.glb", "bunny_res3.glb", "bunny_res2.glb",
                                            "bunny.glb", "teapot.glb", "loader_test.glb",
-                                           "OrientationTest.glb",
-                                           "TransmissionRoughnessTest.glb"),
+                                           "OrientationTest.glb", "TransmissionRoughnessTest.glb"),
                          [](const auto& info) {
                            std::string n = info.param;
                            return n.substr(0, n.find('.'));
@@ -284,8 +281,8 @@ INSTANTIATE_TEST_SUITE_P(Conformance, ProjectScenes,
                            return n.substr(0, n.find('.'));
                          });
 
-// Packet culling (host/gridrt/culling/packet_culling.h) on the camera path, where its argument is most
-// strained: cameras inside the bunny (triangles straddle the camera plane, some nearly
+// Packet culling (host/gridrt/culling/packet_culling.h) on the camera path, where its argument is
+// most strained: cameras inside the bunny (triangles straddle the camera plane, some nearly
 // edge-on, very close to the eye) and one grazing its surface, for both triangle tests.
 TEST_F(Conformance, CameraPathWithPacketCullingFromInsideAndGrazing) {
   Scene scene = loadGltfFile(test::modelScene("bunny_res2.glb"));
@@ -317,9 +314,9 @@ TEST_F(Conformance, CameraPathWithPacketCullingFromInsideAndGrazing) {
       size_t hits = 0;
       for (const GrHit& hit : want) hits += hit.prim >= 0;
       EXPECT_GT(hits, rays.size() / 10) << "camera " << k;
-      EXPECT_EQ(test::hitMismatches(want, got,
-                                    std::string(watertight ? "watertight" : "mt") + " camera " +
-                                        std::to_string(k)),
+      EXPECT_EQ(test::hitMismatches(
+                    want, got,
+                    std::string(watertight ? "watertight" : "mt") + " camera " + std::to_string(k)),
                 0u);
     }
   }
@@ -339,8 +336,8 @@ TEST_F(Conformance, CameraPathThatMakesItsRaysMatchesBrute) {
   Camera ortho = defaultCamera(b);
   ortho.orthographic = true;
   ortho.ymag = 0.6f * e.y;
-  const Camera cameras[] = {defaultCamera(b), lookAtCamera(c + glm::vec3(0.8f, 0.3f, 0.9f) * e, c, 0.7f),
-                            wide, ortho};
+  const Camera cameras[] = {
+      defaultCamera(b), lookAtCamera(c + glm::vec3(0.8f, 0.3f, 0.9f) * e, c, 0.7f), wide, ortho};
   const PixelWindow windows[] = {PixelWindow{0, 0, 0, 0}, PixelWindow{13, 7, 150, 101}};
   const int w = 160, h = 120;
   const auto tris = prepareTriangles(scene);
@@ -480,12 +477,12 @@ TEST_F(Conformance, RaysThroughVoxelEdgesAndCornersAreNotMissed) {
   std::vector<GrRay> rays;
   for (float x : {1.0f, 2.0f, 3.0f})
     for (float y : {1.0f, 2.0f, 3.0f}) {
-      rays.push_back(ray({x, y, 10.0f}, {0, 0, -1}));      // along a voxel edge
+      rays.push_back(ray({x, y, 10.0f}, {0, 0, -1}));  // along a voxel edge
       rays.push_back(ray({x, -1.0f, y}, {0, 1, 0}));
     }
-  rays.push_back(ray({-1, -1, -1}, {1, 1, 1}));           // through every corner
+  rays.push_back(ray({-1, -1, -1}, {1, 1, 1}));  // through every corner
   rays.push_back(ray({5, 5, 5}, {-1, -1, -1}));
-  rays.push_back(ray({2, 2, 10}, {0, 0, -1}));            // hits the edge-on triangle's edge
+  rays.push_back(ray({2, 2, 10}, {0, 0, -1}));  // hits the edge-on triangle's edge
   expectAllAgree(tris, b, rays, {dims(4, 4, 4), dims(2, 2, 2), dims(8, 8, 8)}, "edges");
 }
 
@@ -529,8 +526,8 @@ TEST_F(Conformance, EveryTriangleInOneVoxel) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(0.0f, 0.1f);
   for (int k = 0; k < 200; ++k)
-    tris.push_back(tri({u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)},
-                       {u(rng), u(rng), u(rng)}, k));
+    tris.push_back(
+        tri({u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}, k));
   // Pin the box far away so that the cluster sits inside one voxel of a 4x4x4 grid.
   tris.push_back(tri({10, 10, 10}, {10.01f, 10, 10}, {10, 10.01f, 10}, 200));
   Bounds b = boundsOf(tris);
@@ -711,7 +708,8 @@ std::vector<GrTriangle> squareOverADeepBox(const glm::vec3& shift) {
   const glm::vec3& s = shift;
   return {tri(s + glm::vec3(-1, -1, 0), s + glm::vec3(1, -1, 0), s + glm::vec3(1, 1, 0), 0),
           tri(s + glm::vec3(-1, -1, 0), s + glm::vec3(1, 1, 0), s + glm::vec3(-1, 1, 0), 1),
-          tri(s + glm::vec3(-1, -1, -1), s + glm::vec3(-0.9f, -1, -1), s + glm::vec3(-1, -0.9f, -1), 2)};
+          tri(s + glm::vec3(-1, -1, -1), s + glm::vec3(-0.9f, -1, -1), s + glm::vec3(-1, -0.9f, -1),
+              2)};
 }
 
 // The centre pixels (80 x 80) of a (4/3 height) x height view of `target` from `distance`
@@ -747,14 +745,17 @@ TEST_F(Conformance, NarrowViewsOfABoxFarFromTheOriginMatchBrute) {
     int height;
   };
   for (const View& v : {View{1e4f, 0.01f, 480}, View{1e3f, 0.01f, 4000}, View{1e4f, 0.1f, 4000}}) {
-    const std::vector<GrTriangle> tris = squareOverADeepBox(glm::vec3(v.shift, 0.5f * v.shift, 0.0f));
+    const std::vector<GrTriangle> tris =
+        squareOverADeepBox(glm::vec3(v.shift, 0.5f * v.shift, 0.0f));
     const Bounds b = boundsOf(tris);
     const UniformGrid grid = buildUniformGrid(tris, b, dims(2, 2, 1));
     glm::vec3 lo, hi;
     grid.voxelBoxOfPe(0, lo, hi);
-    const CentreOfView c = centreOfView(glm::vec3(hi.x, hi.y, 0.0f), 100.0f, v.fov_degrees, v.height);
+    const CentreOfView c =
+        centreOfView(glm::vec3(hi.x, hi.y, 0.0f), 100.0f, v.fov_degrees, v.height);
     expectAllAgree(tris, b, c.rays, {dims(2, 2, 1)},
-                   "shift " + std::to_string(v.shift) + " fov " + std::to_string(v.fov_degrees), &c.view);
+                   "shift " + std::to_string(v.shift) + " fov " + std::to_string(v.fov_degrees),
+                   &c.view);
   }
 }
 

@@ -63,9 +63,9 @@ const std::string& renderDefault() {
   if (path.empty() && failure.empty()) {
     std::string out = tempPath("default_160x120.exr");
     std::string err;
-    int rc = runGridrt({"--width", std::to_string(kWidth), "--height", std::to_string(kHeight),
-                        "-o", out, "-q"},
-                       err);
+    int rc = runGridrt(
+        {"--width", std::to_string(kWidth), "--height", std::to_string(kHeight), "-o", out, "-q"},
+        err);
     if (rc == 0 && fs::exists(out))
       path = out;
     else
@@ -126,9 +126,10 @@ void expectLooksLikeDefaultScene(const OIIO::ImageBuf& buf, const std::string& w
   RegionMean right = regionMean(buf, 132, 156, 30, 90);
   EXPECT_GT(left.r, 0.1) << "left wall is dark";
   EXPECT_GT(right.g, 0.1) << "right wall is dark";
-  EXPECT_GT(left.r, 2.0 * left.g) << "left wall is not red (r " << left.r << ", g " << left.g << ")";
-  EXPECT_GT(right.g, 2.0 * right.r) << "right wall is not green (r " << right.r << ", g "
-                                    << right.g << ")";
+  EXPECT_GT(left.r, 2.0 * left.g) << "left wall is not red (r " << left.r << ", g " << left.g
+                                  << ")";
+  EXPECT_GT(right.g, 2.0 * right.r)
+      << "right wall is not green (r " << right.r << ", g " << right.g << ")";
   EXPECT_GT(left.r, right.r) << "left wall should be redder than the right wall";
   EXPECT_GT(right.g, left.g) << "right wall should be greener than the left wall";
 }
@@ -182,12 +183,12 @@ TEST(ImageRegression, DefaultSceneMatchesReference) {
   diff = OIIO::ImageBufAlgo::clamp(diff, 0.0f, 1.0f);
   bool wrote = diff.write(diff_path, OIIO::TypeDesc::UINT8);
   ADD_FAILURE() << result.nfail << " pixels (" << 100.0 * failing << "%) differ by more than "
-                << kFailThreshold << " (allowed " << 100.0 * kMaxFailingFraction
-                << "%); max error " << result.maxerror << " at (" << result.maxx << ", "
-                << result.maxy << ", channel " << result.maxc << "), mean error "
-                << result.meanerror << "\n  render:    " << out
+                << kFailThreshold << " (allowed " << 100.0 * kMaxFailingFraction << "%); max error "
+                << result.maxerror << " at (" << result.maxx << ", " << result.maxy << ", channel "
+                << result.maxc << "), mean error " << result.meanerror << "\n  render:    " << out
                 << "\n  reference: " << referencePath() << "\n  diff x10:  "
-                << (wrote ? diff_path : "(could not write " + diff_path + ": " + diff.geterror() + ")");
+                << (wrote ? diff_path
+                          : "(could not write " + diff_path + ": " + diff.geterror() + ")");
 }
 
 // Removes this process's temp directory when every test passed; on a failure it stays,

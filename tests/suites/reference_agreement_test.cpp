@@ -58,8 +58,8 @@ TEST(ReferenceAgreement, BruteAovsOfBunnyRes4MatchTheDoublePrecisionReference) {
   const int w = 320, h = 240;
   std::string primid = test::tempPath("ref_primid.exr"), depth = test::tempPath("ref_depth.exr");
   std::string cmd = test::gridrtBinary() + " " + test::modelScene("bunny_res4.glb") +
-                    " --width 320 --height 240 --accel brute -q -o " +
-                    test::tempPath("ref.png") + " --aov primid=" + primid + " --aov depth=" + depth;
+                    " --width 320 --height 240 --accel brute -q -o " + test::tempPath("ref.png") +
+                    " --aov primid=" + primid + " --aov depth=" + depth;
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   ImageData p = readImage(primid), d = readImage(depth);
   ASSERT_EQ(p.width, w);
@@ -135,17 +135,18 @@ INSTANTIATE_TEST_SUITE_P(SharedScenes, GridRtAgainstReference,
 // scale (GridSettings::ray_origins) makes gridrt equal brute force again, bit for bit.
 TEST(GridRtFromAFarCamera, PrimitiveIdsAndDepthsEqualBruteForce) {
   if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
-  const char* views[] = {"1000,600,800:0,0.1,0", "-800,300,1000:0.02,0.1,0", "600,-200,-1000:0,0.12,0"};
+  const char* views[] = {"1000,600,800:0,0.1,0", "-800,300,1000:0.02,0.1,0",
+                         "600,-200,-1000:0,0.12,0"};
   for (const char* view : views) {
     std::vector<float> primid[2], depth[2];
     const char* accels[] = {"gridrt", "brute"};
     for (int k = 0; k < 2; ++k) {
       const std::string p = test::tempPath(std::string("far_p_") + accels[k] + ".exr"),
                         d = test::tempPath(std::string("far_d_") + accels[k] + ".exr");
-      const std::string cmd = test::gridrtBinary() + " " + test::modelScene("bunny_res4.glb") +
-                              " --look-at " + view + " --fov 0.0143 --width 320 --height 240" +
-                              " --primary-only --accel " + accels[k] + " -q -o " +
-                              test::tempPath("far.exr") + " --aov primid=" + p + " --aov depth=" + d;
+      const std::string cmd =
+          test::gridrtBinary() + " " + test::modelScene("bunny_res4.glb") + " --look-at " + view +
+          " --fov 0.0143 --width 320 --height 240" + " --primary-only --accel " + accels[k] +
+          " -q -o " + test::tempPath("far.exr") + " --aov primid=" + p + " --aov depth=" + d;
       ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
       primid[k] = readImage(p).pixels;
       depth[k] = readImage(d).pixels;

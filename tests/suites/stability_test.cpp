@@ -43,9 +43,9 @@ class Stability : public ::testing::Test {
   }
 
   struct Agreement {
-    size_t grid_vs_brute = 0;   // bitwise (prim, t) differences: must be 0
+    size_t grid_vs_brute = 0;      // bitwise (prim, t) differences: must be 0
     size_t prim_vs_reference = 0;  // different prim or hit/miss against double
-    double max_rel_t = 0;       // largest relative t difference against double
+    double max_rel_t = 0;          // largest relative t difference against double
   };
 
   // brute (MT and watertight), gridrt and dda on a 16^3 grid, and the double reference.
@@ -90,9 +90,9 @@ class Stability : public ::testing::Test {
 // Grazing: rays at 1e-1 .. 1e-6 rad to a large triangle, aimed at interior points well
 // inside it. The hit is never lost, but t's error grows like 1/sin(angle): recorded.
 TEST_F(Stability, GrazingRaysHitTheSameTriangleAsTheReference) {
-  Scene scene = sceneOfTriangles({{glm::vec3(-4, 0.5f, -4), glm::vec3(4, 0.5f, -4),
-                                   glm::vec3(0, 0.5f, 4)},
-                                  {glm::vec3(-1, 3, -1), glm::vec3(1, 3, -1), glm::vec3(0, 3, 1)}});
+  Scene scene =
+      sceneOfTriangles({{glm::vec3(-4, 0.5f, -4), glm::vec3(4, 0.5f, -4), glm::vec3(0, 0.5f, 4)},
+                        {glm::vec3(-1, 3, -1), glm::vec3(1, 3, -1), glm::vec3(0, 3, 1)}});
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> U(-1.0f, 1.0f);
   std::vector<GrRay> rays;
@@ -101,7 +101,8 @@ TEST_F(Stability, GrazingRaysHitTheSameTriangleAsTheReference) {
       float angle = std::pow(10.0f, -float(e));
       glm::vec3 target(0.8f * U(rng), 0.5f, -1.5f + 0.8f * U(rng));
       float phi = 3.1416f * U(rng);
-      glm::vec3 d(std::cos(angle) * std::cos(phi), -std::sin(angle), std::cos(angle) * std::sin(phi));
+      glm::vec3 d(std::cos(angle) * std::cos(phi), -std::sin(angle),
+                  std::cos(angle) * std::sin(phi));
       glm::vec3 o = target - 2.0f * d;
       rays.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, kInf});
     }
@@ -124,7 +125,8 @@ TEST_F(Stability, TinyAndNeedleTrianglesAgreeWithBruteAndNearbyWithTheReference)
     glm::vec3 c(1e-6f * float(i), 2e-6f, -1e-6f);
     tris.push_back({c, c + glm::vec3(1e-7f, 0, 0), c + glm::vec3(0, 1e-7f, 0)});
   }
-  tris.push_back({glm::vec3(0, -1e-5f, 0), glm::vec3(1, -1e-5f, 0), glm::vec3(0.5f, -1e-5f + 1e-7f, 0)});
+  tris.push_back(
+      {glm::vec3(0, -1e-5f, 0), glm::vec3(1, -1e-5f, 0), glm::vec3(0.5f, -1e-5f + 1e-7f, 0)});
   Scene scene = sceneOfTriangles(tris);
   std::vector<GrRay> near, far;
   for (size_t t = 0; t < tris.size(); ++t) {
@@ -179,8 +181,13 @@ TEST_F(Stability, ATriangleFarLargerThanAVoxelMatchesBrute) {
 TEST_F(Stability, DegenerateTrianglesAreNeverHit) {
   glm::vec3 a(0.3f, 0.2f, 0.1f), b(0.7f, 0.9f, -0.4f);
   std::vector<std::array<glm::vec3, 3>> tris = {
-      {a, a, b}, {a, b, b}, {a, a, a}, {a, b, a}, {a, b, 0.5f * (a + b)},
-      {a, 0.25f * a + 0.75f * b, b}, {glm::vec3(-1, -1, -1), glm::vec3(-0.5f, -1, -1), glm::vec3(-1, -0.5f, -1)}};
+      {a, a, b},
+      {a, b, b},
+      {a, a, a},
+      {a, b, a},
+      {a, b, 0.5f * (a + b)},
+      {a, 0.25f * a + 0.75f * b, b},
+      {glm::vec3(-1, -1, -1), glm::vec3(-0.5f, -1, -1), glm::vec3(-1, -0.5f, -1)}};
   Scene scene = sceneOfTriangles(tris);
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> U(-1.0f, 1.0f), U01(0.0f, 1.0f);
@@ -225,8 +232,8 @@ TEST_F(Stability, DegenerateTrianglesAreNeverHit) {
 // NaN and its voxel range undefined).
 TEST_F(Stability, LoaderDropsNanAndInfTrianglesSoTheGridNeverSeesThem) {
   // Three triangles; vertex 4 is NaN, vertex 7 is +Inf. Positions as raw floats, base64.
-  float pos[27] = {0, 0, 0, 1, 0, 0, 0, 1, 0,  0, 0, 1, NAN, 0, 1, 0, 1, 1,
-                   0, 0, 2, INFINITY, 0, 2, 0, 1, 2};
+  float pos[27] = {0, 0, 0, 1, 0, 0, 0, 1,        0, 0, 0, 1, NAN, 0,
+                   1, 0, 1, 1, 0, 0, 2, INFINITY, 0, 2, 0, 1, 2};
   std::string bytes(reinterpret_cast<const char*>(pos), sizeof pos), b64;
   const char* tbl = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   for (size_t i = 0; i < bytes.size(); i += 3) {
@@ -240,12 +247,13 @@ TEST_F(Stability, LoaderDropsNanAndInfTrianglesSoTheGridNeverSeesThem) {
   std::string json =
       "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
       "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
-      "\"buffers\":[{\"byteLength\":108,\"uri\":\"data:application/octet-stream;base64," + b64 +
+      "\"buffers\":[{\"byteLength\":108,\"uri\":\"data:application/octet-stream;base64," +
+      b64 +
       "\"}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":108}],"
       "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":9,\"type\":\"VEC3\","
       "\"min\":[0,0,0],\"max\":[1,1,2]}]}";
-  Scene s = loadGltfFromMemory(reinterpret_cast<const unsigned char*>(json.data()), json.size(),
-                               "", "nan.gltf");
+  Scene s = loadGltfFromMemory(reinterpret_cast<const unsigned char*>(json.data()), json.size(), "",
+                               "nan.gltf");
   EXPECT_EQ(s.dropped_degenerate, 2u);
   ASSERT_EQ(s.triangleCount(), 1u);
   for (const auto& p : s.positions) EXPECT_TRUE(std::isfinite(p.x + p.y + p.z));
@@ -254,7 +262,8 @@ TEST_F(Stability, LoaderDropsNanAndInfTrianglesSoTheGridNeverSeesThem) {
   EXPECT_GE(grid.peCount(), 1);
   // NaN and Inf rays: no crash, no hit.
   GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
-  std::vector<GrRay> rays = {{NAN, 0, 1, 0, 0, 0, -1, kInf}, {0.2f, 0.2f, 1, 0, NAN, 0, -1, kInf},
+  std::vector<GrRay> rays = {{NAN, 0, 1, 0, 0, 0, -1, kInf},
+                             {0.2f, 0.2f, 1, 0, NAN, 0, -1, kInf},
                              {0.2f, 0.2f, kInf, 0, 0, 0, -1, kInf}};
   std::vector<GrHit> hits;
   gridrt.intersect(rays, HitMode::Closest, hits, nullptr);

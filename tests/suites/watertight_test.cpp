@@ -4,6 +4,8 @@
 // own rounding and leaks; the watertight test of Woop, Benthin & Wald (kernels/common/
 // watertight.h) must not, given the same float vertices on both sides of each edge.
 // Leak counts are printed and recorded (RecordProperty) for both tests.
+#include "watertight.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,7 +25,6 @@
 #include "reference_intersector.h"
 #include "test_support.h"
 #include "uniform_grid.h"
-#include "watertight.h"
 
 namespace gridrt {
 namespace {
@@ -137,8 +138,8 @@ std::vector<AimedRay> aimedRays(const IndexedMesh& m, const glm::vec3* from = nu
     float s = kInf;
     for (int f : faces)
       for (int k = 0; k < 3; ++k)
-        s = std::min(s, glm::length(m.vertices[m.faces[f][k]] -
-                                    m.vertices[m.faces[f][(k + 1) % 3]]));
+        s = std::min(s,
+                     glm::length(m.vertices[m.faces[f][k]] - m.vertices[m.faces[f][(k + 1) % 3]]));
     return s;
   };
   std::vector<AimedRay> out;
@@ -212,11 +213,11 @@ size_t hostLeaks(const IndexedMesh& m, const std::vector<AimedRay>& rays, HostTe
         h = gr_intersect_mt(q.ox, q.oy, q.oz, q.dx, q.dy, q.dz, a.x, a.y, a.z, e1.x, e1.y, e1.z,
                             e2.x, e2.y, e2.z, &t, &u, &v);
       else if (which == HostTest::WatertightEdges)
-        h = gr_intersect_watertight(q.ox, q.oy, q.oz, q.dx, q.dy, q.dz, a.x, a.y, a.z, e1.x,
-                                    e1.y, e1.z, e2.x, e2.y, e2.z, &t, &u, &v);
+        h = gr_intersect_watertight(q.ox, q.oy, q.oz, q.dx, q.dy, q.dz, a.x, a.y, a.z, e1.x, e1.y,
+                                    e1.z, e2.x, e2.y, e2.z, &t, &u, &v);
       else
-        h = gr_intersect_watertight_vertices(q.ox, q.oy, q.oz, q.dx, q.dy, q.dz, a.x, a.y, a.z,
-                                             b.x, b.y, b.z, c.x, c.y, c.z, &t, &u, &v);
+        h = gr_intersect_watertight_vertices(q.ox, q.oy, q.oz, q.dx, q.dy, q.dz, a.x, a.y, a.z, b.x,
+                                             b.y, b.z, c.x, c.y, c.z, &t, &u, &v);
       hit |= h && t > 0.0f;
     }
     leaks += !hit;
@@ -243,7 +244,6 @@ class Watertight : public ::testing::Test {
     if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
     runtime_ = std::make_unique<ClRuntime>("");
   }
-
 
   void record(const std::string& key, size_t value) {
     RecordProperty(key, std::to_string(value));
@@ -354,7 +354,8 @@ TEST_F(Watertight, BunnyEdgesAndVerticesLeakOnlyWithMollerTrumbore) {
   auto rays = raysOf(aimed);
   UniformGrid grid = buildUniformGrid(tris, sceneBounds(scene), GridSettings{});
   UniformGrid wgrid = buildUniformGrid(wtris, sceneBounds(scene), GridSettings{});
-  GridRtIntersector mt(*runtime_, grid, PeInterrupt::Off), wt(*runtime_, wgrid, PeInterrupt::Off, watertight);
+  GridRtIntersector mt(*runtime_, grid, PeInterrupt::Off),
+      wt(*runtime_, wgrid, PeInterrupt::Off, watertight);
   DdaIntersector dda(*runtime_, wgrid, watertight);
   std::vector<GrHit> mt_hits, wt_hits, dda_hits;
   mt.intersect(rays, HitMode::Closest, mt_hits, nullptr);

@@ -1,8 +1,7 @@
 #include "test_support.h"
 
-#include <unistd.h>
-
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstring>
@@ -17,17 +16,15 @@ std::string sourcePath(const std::string& relative) {
   return std::string(GRIDRT_SOURCE_DIR) + "/" + relative;
 }
 
-std::string modelScene(const std::string& name) {
-  return sourcePath("scenes/models/" + name);
-}
+std::string modelScene(const std::string& name) { return sourcePath("scenes/models/" + name); }
 
 std::string gridrtBinary() { return GRIDRT_BINARY; }
 
 namespace {
 // The per-process temporary directory, removed when the test process exits.
 struct TempDir {
-  std::filesystem::path path = std::filesystem::temp_directory_path() /
-                               ("gridrt_test_" + std::to_string(::getpid()));
+  std::filesystem::path path =
+      std::filesystem::temp_directory_path() / ("gridrt_test_" + std::to_string(::getpid()));
   ~TempDir() {
     std::error_code ignored;
     std::filesystem::remove_all(path, ignored);
@@ -65,8 +62,8 @@ size_t hitMismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& g
     bool same = want[i].prim == got[i].prim &&
                 (want[i].prim < 0 || std::memcmp(&want[i].t, &got[i].t, sizeof(float)) == 0);
     if (!same && bad++ == 0)
-      ADD_FAILURE() << label << ": ray " << i << " want prim " << want[i].prim << " t "
-                    << want[i].t << ", got prim " << got[i].prim << " t " << got[i].t;
+      ADD_FAILURE() << label << ": ray " << i << " want prim " << want[i].prim << " t " << want[i].t
+                    << ", got prim " << got[i].prim << " t " << got[i].t;
   }
   return bad;
 }
@@ -74,11 +71,11 @@ size_t hitMismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& g
 int intersectScalar(const GrTriangle& tri, const glm::vec3& o, const glm::vec3& d, float* t,
                     float* u, float* v) {
   if (tri.vertex_layout)
-    return gr_intersect_watertight_vertices(o.x, o.y, o.z, d.x, d.y, d.z, tri.v0x, tri.v0y,
-                                            tri.v0z, tri.e1x, tri.e1y, tri.e1z, tri.e2x,
-                                            tri.e2y, tri.e2z, t, u, v);
-  return gr_intersect_mt(o.x, o.y, o.z, d.x, d.y, d.z, tri.v0x, tri.v0y, tri.v0z, tri.e1x,
-                         tri.e1y, tri.e1z, tri.e2x, tri.e2y, tri.e2z, t, u, v);
+    return gr_intersect_watertight_vertices(o.x, o.y, o.z, d.x, d.y, d.z, tri.v0x, tri.v0y, tri.v0z,
+                                            tri.e1x, tri.e1y, tri.e1z, tri.e2x, tri.e2y, tri.e2z, t,
+                                            u, v);
+  return gr_intersect_mt(o.x, o.y, o.z, d.x, d.y, d.z, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y,
+                         tri.e1z, tri.e2x, tri.e2y, tri.e2z, t, u, v);
 }
 
 }  // namespace gridrt::test

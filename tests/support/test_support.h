@@ -1,9 +1,8 @@
 // Helpers the tests have in common: paths of the source tree, the model scenes and the binary.
 #pragma once
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "gridrt_types.h"
 

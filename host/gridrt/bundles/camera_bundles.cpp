@@ -1,8 +1,9 @@
 #include "camera_bundles.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
-#include <omp.h>
 
 namespace gridrt {
 
@@ -73,8 +74,8 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   const int tiles_x = (ww + kTileSize - 1) / kTileSize, tiles_y = (wh + kTileSize - 1) / kTileSize;
   const size_t slots = size_t(tiles_x) * tiles_y * kBundleLanes;
   // The tile layout depends on the window's size only: kept from the previous call.
-  const bool same_layout = bundles.ray_of.size() == slots && scratch.layout_width == ww &&
-                           scratch.layout_height == wh;
+  const bool same_layout =
+      bundles.ray_of.size() == slots && scratch.layout_width == ww && scratch.layout_height == wh;
   scratch.layout_width = ww;
   scratch.layout_height = wh;
   bundles.ray_of.resize(slots);
@@ -130,7 +131,9 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
       }
       // Tile rows in reach (clamped in double first: a corner near the camera plane
       // projects far outside int range).
-      auto clampTo = [](double x, int a, int b) { return int(std::max(double(a), std::min(double(b), x))); };
+      auto clampTo = [](double x, int a, int b) {
+        return int(std::max(double(a), std::min(double(b), x)));
+      };
       const int ty0 = clampTo(std::floor((ymin - margin - win.y0) / kTileSize), 0, tiles_y);
       const int ty1 = clampTo(std::floor((ymax + margin - win.y0) / kTileSize) + 1.0, 0, tiles_y);
       for (int ty = ty0; ty < ty1; ++ty) {

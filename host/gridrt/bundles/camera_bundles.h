@@ -37,7 +37,8 @@ struct CameraBundleScratch {
 // test passes rays a few roundings (relative to t) outside the box, an angle of a few
 // epsilons from the eye. Angles become pixels at the image corner's gnomonic stretch
 // (1 + tan^2 (aspect^2 + 1)) times the pixels per radian at the centre. Budget, in float
-// epsilons (2^-24) of both: 64, about four times the sum (tests/gridrt/bundles/camera_bundles_test.cpp).
+// epsilons (2^-24) of both: 64, about four times the sum
+// (tests/gridrt/bundles/camera_bundles_test.cpp).
 constexpr double kCameraOutlineEpsilons = 64.0;
 double cameraOutlineMargin(const PinholeView& view);
 

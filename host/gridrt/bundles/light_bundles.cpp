@@ -64,7 +64,9 @@ size_t FaceWindow::cellOf(float u, float v) const {
 
 void FaceWindow::cellRange(float lo, float hi, float origin, float scale, int& c0, int& c1) const {
   // (x - origin) * scale is monotone in x, so the rays' cells (cellOf) and these agree.
-  auto cell = [&](float x) { return std::floor(std::max(-1.0f, std::min(float(res), (x - origin) * scale))); };
+  auto cell = [&](float x) {
+    return std::floor(std::max(-1.0f, std::min(float(res), (x - origin) * scale)));
+  };
   lo -= kLightFaceMargin * (1.0f + std::fabs(lo));
   hi += kLightFaceMargin * (1.0f + std::fabs(hi));
   c0 = std::max(0, int(cell(lo)));
@@ -72,8 +74,10 @@ void FaceWindow::cellRange(float lo, float hi, float origin, float scale, int& c
 }
 
 float missOfLight(const GrRay& ray, const glm::vec3& light) {
-  const glm::vec3 end = glm::vec3(ray.ox, ray.oy, ray.oz) + ray.tmax * glm::vec3(ray.dx, ray.dy, ray.dz);
-  const float reach = std::max({std::fabs(ray.ox), std::fabs(ray.oy), std::fabs(ray.oz)}) + ray.tmax;
+  const glm::vec3 end =
+      glm::vec3(ray.ox, ray.oy, ray.oz) + ray.tmax * glm::vec3(ray.dx, ray.dy, ray.dz);
+  const float reach =
+      std::max({std::fabs(ray.ox), std::fabs(ray.oy), std::fabs(ray.oz)}) + ray.tmax;
   return glm::length(end - light) +
          kLightEndRoundingEpsilons * std::numeric_limits<float>::epsilon() * reach;
 }
@@ -121,7 +125,8 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
   scratch.cell_of.resize(count);
 #pragma omp parallel for schedule(static)
   for (long long r = 0; r < (long long)count; ++r)
-    scratch.cell_of[r] = int(faces[scratch.face_of[r]].cellOf(scratch.uv[2 * r], scratch.uv[2 * r + 1]));
+    scratch.cell_of[r] =
+        int(faces[scratch.face_of[r]].cellOf(scratch.uv[2 * r], scratch.uv[2 * r + 1]));
 
   // Bundle order: counting sort by cell, padded to whole packets. Stable and parallel:
   // each thread counts its own range of rays, and its rays of a cell follow the rays of
@@ -153,7 +158,8 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
     }
     for (size_t r = r0; r < r1; ++r) bundles.ray_of[mine[scratch.cell_of[r]]++] = int(r);
 #pragma omp for schedule(static)
-    for (long long b = (long long)count; b < (long long)bundles.ray_of.size(); ++b) bundles.ray_of[b] = -1;
+    for (long long b = (long long)count; b < (long long)bundles.ray_of.size(); ++b)
+      bundles.ray_of[b] = -1;
   }
 
   // Boxes are grown by the rays' largest miss of the light (rounding of the corners'
@@ -170,7 +176,8 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
       const FaceWindow& fw = faces[face];
       const size_t row_cell = fw.first_cell + size_t(r) * fw.res;
       const int first = start[row_cell + c0], last = start[row_cell + c1];
-      if (last > first) runs.push_back(LightBundleScratch::Run{pe, fw.first_row + r, first, last - first});
+      if (last > first)
+        runs.push_back(LightBundleScratch::Run{pe, fw.first_row + r, first, last - first});
     };
 #pragma omp for schedule(static)
     for (int pe = 0; pe < pes; ++pe) {
@@ -193,8 +200,10 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
         // the light reaches the face's borders; 0 / 0 (a corner on the light's axis line)
         // says nothing and is left out, its neighbours span that side.
         glm::vec3 blo = lo, bhi = hi;
-        if (s > 0.0f) blo[a] = std::max(blo[a], light[a]);
-        else bhi[a] = std::min(bhi[a], light[a]);
+        if (s > 0.0f)
+          blo[a] = std::max(blo[a], light[a]);
+        else
+          bhi[a] = std::min(bhi[a], light[a]);
         if (!(blo[a] <= bhi[a])) continue;
         float umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
         for (int k = 0; k < 8; ++k) {

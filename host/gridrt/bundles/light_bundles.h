@@ -60,11 +60,11 @@ struct FaceWindow {
 };
 
 struct LightBundleScratch {
-  std::vector<int> face_of;     // per ray
-  std::vector<float> uv;        // per ray, its point on the face
+  std::vector<int> face_of;  // per ray
+  std::vector<float> uv;     // per ray, its point on the face
   std::array<FaceWindow, 6> faces;
-  std::vector<int> cell_of;     // per ray
-  std::vector<int> cell_start;  // counting sort by cell, then the run starts
+  std::vector<int> cell_of;                     // per ray
+  std::vector<int> cell_start;                  // counting sort by cell, then the run starts
   std::vector<std::vector<int>> thread_counts;  // per thread and cell (parallel sort)
   std::vector<std::array<FaceWindow, 6>> thread_windows;
   struct Run {

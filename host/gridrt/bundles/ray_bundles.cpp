@@ -13,7 +13,9 @@ void RayBundles::addRange(int pe, int first, int count) {
     int n = std::min(kMaxTaskRays, count - k);
     // Result lanes are indexed with int on the device.
     if (out_lanes + size_t(n) + kBundleLanes > size_t(INT_MAX))
-      throw RenderError("a batch needs more than 2^31 (ray, PE) result lanes; use a coarser --grid or a smaller image");
+      throw RenderError(
+          "a batch needs more than 2^31 (ray, PE) result lanes; use a coarser --grid or a smaller "
+          "image");
     tasks.push_back(GrBundleTask{pe, first + k, n, int(out_lanes)});
     out_lanes += size_t(n + kBundleLanes - 1) / kBundleLanes * kBundleLanes;
   }

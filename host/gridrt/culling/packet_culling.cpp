@@ -20,7 +20,7 @@ glm::dvec3 rightOf(const GrCullFrame& f) { return {f.rx, f.ry, f.rz}; }
 glm::dvec3 upOf(const GrCullFrame& f) { return {f.ux, f.uy, f.uz}; }
 
 CullBox boxOf(const GrCullFrame& frame, const glm::dvec3& origin, const glm::dvec3 v[3],
-                double error_factor) {
+              double error_factor) {
   const glm::dvec3 f = forwardOf(frame), r = rightOf(frame), u = upOf(frame);
   double a[3], b[3], z_min = std::numeric_limits<double>::infinity(), far = 0.0;
   glm::dvec3 w[3];
@@ -36,8 +36,8 @@ CullBox boxOf(const GrCullFrame& frame, const glm::dvec3& origin, const glm::dve
     b[i] = glm::dot(w[i], u) / z;
   }
   const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
-  const double edge = std::max({glm::length(v[1] - v[0]), glm::length(v[2] - v[0]),
-                                glm::length(v[2] - v[1])});
+  const double edge =
+      std::max({glm::length(v[1] - v[0]), glm::length(v[2] - v[0]), glm::length(v[2] - v[1])});
   const double incidence = std::abs(glm::dot(n, w[0]));
   const double kappa = edge * edge * far / incidence;
   double spread = 1.0;
@@ -45,9 +45,9 @@ CullBox boxOf(const GrCullFrame& frame, const glm::dvec3& origin, const glm::dve
   const double margin = error_factor * 0x1p-24 * kappa * (far / z_min) * spread * spread;
   if (!(margin < 1.0)) return kUnculled;  // also NaN/inf: edge-on or degenerate
   return CullBox{floatBelow(std::min({a[0], a[1], a[2]}) - margin),
-                   floatAbove(std::max({a[0], a[1], a[2]}) + margin),
-                   floatBelow(std::min({b[0], b[1], b[2]}) - margin),
-                   floatAbove(std::max({b[0], b[1], b[2]}) + margin)};
+                 floatAbove(std::max({a[0], a[1], a[2]}) + margin),
+                 floatBelow(std::min({b[0], b[1], b[2]}) - margin),
+                 floatAbove(std::max({b[0], b[1], b[2]}) + margin)};
 }
 
 }  // namespace

@@ -65,8 +65,8 @@ void computeCullBoxes(const GrCullFrame& frame, const glm::vec3& origin,
 constexpr size_t kCullPlanePadding = 16;
 
 // The boxes as the PE kernel reads them: four planes (amin, amax, bmin, bmax), each
-// stride() = triangles + kCullPlanePadding floats long. Recomputed only when the frame or the origin changes (a camera
-// renders many frames from one place).
+// stride() = triangles + kCullPlanePadding floats long. Recomputed only when the frame or the
+// origin changes (a camera renders many frames from one place).
 class CullPlaneCache {
  public:
   // True when the planes were recomputed (a device copy is then stale).

@@ -2,9 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <string>
-
 #include <glm/glm.hpp>
+#include <string>
 
 #include "outward_rounding.h"
 #include "prepared_triangles.h"
@@ -21,10 +20,21 @@ void computeSegmentCullPlanes(const std::vector<GrTriangle>& triangles,
     const glm::dvec3 &v0 = v[0], &v1 = v[1], &v2 = v[2];
     const glm::dvec3 e1 = v1 - v0, e2 = v2 - v0, normal = glm::cross(e1, e2);
     const double scale = glm::length(e1) * glm::length(e2);
-    const double reach = std::abs(v0.x) + std::abs(v0.y) + std::abs(v0.z) + glm::length(e1) +
-                         glm::length(e2);
+    const double reach =
+        std::abs(v0.x) + std::abs(v0.y) + std::abs(v0.z) + glm::length(e1) + glm::length(e2);
     const double values[GR_SEG_PLANES] = {
-        v0.x, v0.y, v0.z, v1.x, v1.y, v1.z, v2.x, v2.y, v2.z, normal.x, normal.y, normal.z,
+        v0.x,
+        v0.y,
+        v0.z,
+        v1.x,
+        v1.y,
+        v1.z,
+        v2.x,
+        v2.y,
+        v2.z,
+        normal.x,
+        normal.y,
+        normal.z,
         glm::length(normal) > 0.0 ? double(floatAbove(scale)) : INFINITY,
         double(floatAbove(reach))};
     for (int p = 0; p < GR_SEG_PLANES; ++p) planes[p * stride + i] = float(values[p]);
@@ -35,8 +45,8 @@ double segmentCullMargin(const std::vector<float>& planes, size_t index, const G
                          float t_hi, double error_factor) {
   const size_t stride = planes.size() / GR_SEG_PLANES;
   auto plane = [&](int p) { return double(planes[p * stride + index]); };
-  const double facing = std::abs(plane(GR_SEG_NX) * ray.dx + plane(GR_SEG_NY) * ray.dy +
-                                 plane(GR_SEG_NZ) * ray.dz);
+  const double facing =
+      std::abs(plane(GR_SEG_NX) * ray.dx + plane(GR_SEG_NY) * ray.dy + plane(GR_SEG_NZ) * ray.dz);
   const double scale = plane(GR_SEG_SCALE);
   if (!(facing * kSegmentCullMaxConditioning >= scale)) return INFINITY;
   const double reach = std::abs(ray.ox) + std::abs(ray.oy) + std::abs(ray.oz) + std::abs(t_hi);

@@ -82,9 +82,10 @@ void beginAxis(Axis& a, float lo, float hi, __m512& t0, __m512& t1, __mmask16& v
 // The entry voxel's index on one axis: floor((p - min) / cell), clamped into the grid.
 void entryIndex(Axis& a, __m512 t0) {
   const __m512 p = _mm512_add_ps(a.o, _mm512_mul_ps(t0, a.d));
-  const __m512 cell = _mm512_div_ps(_mm512_sub_ps(p, _mm512_set1_ps(a.grid_min)), _mm512_set1_ps(a.cell));
-  const __m512i i = _mm512_cvttps_epi32(
-      _mm512_roundscale_ps(cell, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
+  const __m512 cell =
+      _mm512_div_ps(_mm512_sub_ps(p, _mm512_set1_ps(a.grid_min)), _mm512_set1_ps(a.cell));
+  const __m512i i =
+      _mm512_cvttps_epi32(_mm512_roundscale_ps(cell, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
   a.i = _mm512_min_epi32(_mm512_max_epi32(i, _mm512_setzero_si512()), _mm512_set1_epi32(a.n - 1));
 }
 
@@ -141,14 +142,17 @@ void ddaPacket(const GrGridInfo& g, const int* pe_of_voxel, const GrRay* rays, i
   for (__mmask16 active = valid; active;) {
     // The current voxel, kept when it holds a PE: (pe, t_enter, t_exit) as 3 ints.
     const __m512i voxel = _mm512_add_epi32(
-        x.i, _mm512_mullo_epi32(_mm512_set1_epi32(g.nx),
-                                _mm512_add_epi32(y.i, _mm512_mullo_epi32(_mm512_set1_epi32(g.ny), z.i))));
-    const __m512i pe = _mm512_mask_i32gather_epi32(_mm512_set1_epi32(-1), active, voxel, pe_of_voxel, 4);
+        x.i, _mm512_mullo_epi32(
+                 _mm512_set1_epi32(g.nx),
+                 _mm512_add_epi32(y.i, _mm512_mullo_epi32(_mm512_set1_epi32(g.ny), z.i))));
+    const __m512i pe =
+        _mm512_mask_i32gather_epi32(_mm512_set1_epi32(-1), active, voxel, pe_of_voxel, 4);
     const __mmask16 keep = _mm512_mask_cmpge_epi32_mask(active, pe, _mm512_setzero_si512());
     const __m512i at = _mm512_mullo_epi32(_mm512_add_epi32(lane_base, found), _mm512_set1_epi32(3));
     _mm512_mask_i32scatter_epi32(out_ints, keep, at, pe, 4);
     _mm512_mask_i32scatter_ps(out_ints, keep, _mm512_add_epi32(at, one), t_enter, 4);
-    _mm512_mask_i32scatter_ps(out_ints, keep, _mm512_add_epi32(at, _mm512_set1_epi32(2)), t_exit, 4);
+    _mm512_mask_i32scatter_ps(out_ints, keep, _mm512_add_epi32(at, _mm512_set1_epi32(2)), t_exit,
+                              4);
     found = _mm512_mask_add_epi32(found, keep, found, one);
 
     // gr_dda_step: stop at t_end, else step the nearest boundary's axis (x, y, z on ties).
@@ -166,7 +170,6 @@ void ddaPacket(const GrGridInfo& g, const int* pe_of_voxel, const GrRay* rays, i
   _mm512_store_si512(found_lanes, found);
   for (int k = 0; k < count; ++k) counts[k] = found_lanes[k];
 }
-
 
 #elif defined(__AVX2__)
 
@@ -226,7 +229,8 @@ void beginAxis(Axis& a, float lo, float hi, __m256& t0, __m256& t1, __m256& vali
 
 void entryIndex(Axis& a, __m256 t0) {
   const __m256 p = _mm256_add_ps(a.o, _mm256_mul_ps(t0, a.d));
-  const __m256 cell = _mm256_div_ps(_mm256_sub_ps(p, _mm256_set1_ps(a.grid_min)), _mm256_set1_ps(a.cell));
+  const __m256 cell =
+      _mm256_div_ps(_mm256_sub_ps(p, _mm256_set1_ps(a.grid_min)), _mm256_set1_ps(a.cell));
   const __m256i i = _mm256_cvttps_epi32(_mm256_floor_ps(cell));
   a.i = _mm256_min_epi32(_mm256_max_epi32(i, _mm256_setzero_si256()), _mm256_set1_epi32(a.n - 1));
 }
@@ -262,10 +266,10 @@ void ddaPacket(const GrGridInfo& g, const int* pe_of_voxel, const GrRay* rays, i
   Axis x{field(0), field(4), {}, {}, {}, {}, g.minx, g.cellx, g.nx};
   Axis y{field(1), field(5), {}, {}, {}, {}, g.miny, g.celly, g.ny};
   Axis z{field(2), field(6), {}, {}, {}, {}, g.minz, g.cellz, g.nz};
-  __m256 valid = _mm256_and_ps(lanes, _mm256_and_ps(_mm256_and_ps(isFinite(x.o), isFinite(y.o)),
-                                                    isFinite(z.o)));
-  valid = _mm256_and_ps(valid, _mm256_and_ps(_mm256_and_ps(isFinite(x.d), isFinite(y.d)),
-                                             isFinite(z.d)));
+  __m256 valid = _mm256_and_ps(
+      lanes, _mm256_and_ps(_mm256_and_ps(isFinite(x.o), isFinite(y.o)), isFinite(z.o)));
+  valid = _mm256_and_ps(valid,
+                        _mm256_and_ps(_mm256_and_ps(isFinite(x.d), isFinite(y.d)), isFinite(z.d)));
   __m256 t0 = field(3), t1 = field(7);
   beginAxis(x, g.minx, g.minx + float(g.nx) * g.cellx, t0, t1, valid);
   beginAxis(y, g.miny, g.miny + float(g.ny) * g.celly, t0, t1, valid);
@@ -285,11 +289,13 @@ void ddaPacket(const GrGridInfo& g, const int* pe_of_voxel, const GrRay* rays, i
   for (__m256 active = valid; _mm256_movemask_ps(active);) {
     // The current voxel, kept when it holds a PE.
     const __m256i voxel = _mm256_add_epi32(
-        x.i, _mm256_mullo_epi32(_mm256_set1_epi32(g.nx),
-                                _mm256_add_epi32(y.i, _mm256_mullo_epi32(_mm256_set1_epi32(g.ny), z.i))));
-    const __m256i pe = _mm256_mask_i32gather_epi32(_mm256_set1_epi32(-1), pe_of_voxel, voxel,
-                                                   asInt(active), 4);
-    const __m256i keep = _mm256_and_si256(asInt(active), _mm256_cmpgt_epi32(pe, _mm256_set1_epi32(-1)));
+        x.i, _mm256_mullo_epi32(
+                 _mm256_set1_epi32(g.nx),
+                 _mm256_add_epi32(y.i, _mm256_mullo_epi32(_mm256_set1_epi32(g.ny), z.i))));
+    const __m256i pe =
+        _mm256_mask_i32gather_epi32(_mm256_set1_epi32(-1), pe_of_voxel, voxel, asInt(active), 4);
+    const __m256i keep =
+        _mm256_and_si256(asInt(active), _mm256_cmpgt_epi32(pe, _mm256_set1_epi32(-1)));
     if (int kept = _mm256_movemask_ps(asFloat(keep))) {
       _mm256_store_si256(reinterpret_cast<__m256i*>(pe_of), pe);
       _mm256_store_si256(reinterpret_cast<__m256i*>(found_of), found);
@@ -306,8 +312,8 @@ void ddaPacket(const GrGridInfo& g, const int* pe_of_voxel, const GrRay* rays, i
     __m256 go = _mm256_andnot_ps(_mm256_cmp_ps(t_exit, t_end, _CMP_GE_OQ), active);
     const __m256 sel_x = _mm256_and_ps(go, _mm256_and_ps(_mm256_cmp_ps(x.tn, y.tn, _CMP_LE_OQ),
                                                          _mm256_cmp_ps(x.tn, z.tn, _CMP_LE_OQ)));
-    const __m256 sel_y = _mm256_and_ps(_mm256_andnot_ps(sel_x, go),
-                                       _mm256_cmp_ps(y.tn, z.tn, _CMP_LE_OQ));
+    const __m256 sel_y =
+        _mm256_and_ps(_mm256_andnot_ps(sel_x, go), _mm256_cmp_ps(y.tn, z.tn, _CMP_LE_OQ));
     const __m256 sel_z = _mm256_andnot_ps(_mm256_or_ps(sel_x, sel_y), go);
     const __m256 left_x = stepAxis(x, sel_x);
     const __m256 left_y = stepAxis(y, sel_y);

@@ -16,11 +16,11 @@
 namespace gridrt {
 
 struct PeBins {
-  std::vector<float> pairs;        // the packet planes (unless binByPe was given `out`)
-  size_t packets = 0;              // packets written, padding included
+  std::vector<float> pairs;  // the packet planes (unless binByPe was given `out`)
+  size_t packets = 0;        // packets written, padding included
   std::vector<GrPeTask> tasks;
-  std::vector<int> pairs_per_pe;   // rays each PE received in the last batch
-  std::vector<int> pairs_per_part; // ... per (PE, octant): index pe * 8 + octant
+  std::vector<int> pairs_per_pe;                // rays each PE received in the last batch
+  std::vector<int> pairs_per_part;              // ... per (PE, octant): index pe * 8 + octant
   std::vector<std::vector<int>> thread_counts;  // scratch reused between batches
 };
 

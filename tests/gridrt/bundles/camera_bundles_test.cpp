@@ -1,15 +1,16 @@
-// Camera bundles (host/gridrt/bundles/camera_bundles.h): a PE must receive every pixel whose float centre
-// ray the kernel's slab test lets into its voxel, or the camera path loses hits the
+// Camera bundles (host/gridrt/bundles/camera_bundles.h): a PE must receive every pixel whose float
+// centre ray the kernel's slab test lets into its voxel, or the camera path loses hits the
 // traversal lists would find. The hard cases are views whose pixels are finer than the
 // rays' rounding: narrow fields of view on large images, and boxes far from the world
 // origin (where a float projection of their corners cancels).
+#include "camera_bundles.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 #include <set>
 
-#include "camera_bundles.h"
 #include "camera_rays.h"
 #include "prepared_triangles.h"
 #include "uniform_grid.h"
@@ -41,8 +42,8 @@ UniformGrid filledGrid(const glm::vec3& shift, glm::ivec3 dims) {
   for (int z = 0; z < dims.z; ++z)
     for (int y = 0; y < dims.y; ++y)
       for (int x = 0; x < dims.x; ++x) {
-        const glm::vec3 c = shift + glm::vec3(-1.0f) +
-                            2.0f * (glm::vec3(x, y, z) + 0.5f) / glm::vec3(dims);
+        const glm::vec3 c =
+            shift + glm::vec3(-1.0f) + 2.0f * (glm::vec3(x, y, z) + 0.5f) / glm::vec3(dims);
         const glm::vec3 v[3] = {c, c + glm::vec3(0.05f, 0, 0), c + glm::vec3(0, 0.05f, 0.02f)};
         tris.push_back(prepareTriangle(v, int(tris.size())));
       }
@@ -82,7 +83,8 @@ Coverage checkRandomViews(float shift_scale, uint32_t seed) {
     const float fov = glm::radians(0.01f * std::pow(17000.0f, unit(rng)));  // 0.01 .. 170 degrees
     const int height = view_index % 3 == 0 ? 480 : view_index % 3 == 1 ? 4000 : 15000;
     const int width = height * 4 / 3;
-    const Camera camera = lookAtCamera(target + glm::normalize(towards_eye) * distance, target, fov);
+    const Camera camera =
+        lookAtCamera(target + glm::normalize(towards_eye) * distance, target, fov);
     const PixelWindow window{width / 2 - 24, height / 2 - 24, width / 2 + 24, height / 2 + 24};
     const PinholeView view = PinholeView::of(camera, width, height, window);
     RayBundles bundles;

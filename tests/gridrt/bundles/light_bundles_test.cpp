@@ -1,11 +1,11 @@
 // Light bundles' cells (host/gridrt/bundles/light_bundles.h): the cells a voxel's projected outline
 // covers must hold every ray whose face coordinate lies in the outline up to rounding.
+#include "light_bundles.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
-
-#include "light_bundles.h"
 
 namespace gridrt {
 namespace {

@@ -1,13 +1,14 @@
-// Packet culling (host/gridrt/culling/packet_culling.h): a triangle's box on the tangent plane must hold
-// the (a, b) of every ray the ray/triangle test reports as hitting it, including the rays
-// that the test's rounding lets through just outside the exact triangle; triangles the
-// argument does not hold for (a vertex behind the origin, edge-on) are never culled.
+// Packet culling (host/gridrt/culling/packet_culling.h): a triangle's box on the tangent plane must
+// hold the (a, b) of every ray the ray/triangle test reports as hitting it, including the rays that
+// the test's rounding lets through just outside the exact triangle; triangles the argument does not
+// hold for (a vertex behind the origin, edge-on) are never culled.
+#include "packet_culling.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "packet_culling.h"
 #include "prepared_triangles.h"
 #include "test_support.h"
 
@@ -58,8 +59,7 @@ Violations countViolations(bool watertight, double error_factor) {
     computeCullBoxes(frame, origin, {tri}, boxes, error_factor);
     for (int ray = 0; ray < 3000; ++ray) {
       const float scale = std::ldexp(1.0f, -10 - int(rng() % 14));
-      const glm::vec3 target =
-          v[ray % 3] + glm::vec3(unit(rng), unit(rng), unit(rng)) * scale;
+      const glm::vec3 target = v[ray % 3] + glm::vec3(unit(rng), unit(rng), unit(rng)) * scale;
       const glm::vec3 d = glm::normalize(target - origin);
       float t, u, w;
       const int hit = test::intersectScalar(tri, origin, d, &t, &u, &w);

@@ -1,8 +1,9 @@
-// Segment culling (host/gridrt/culling/segment_culling.h): wherever the ray/triangle test reports a hit,
-// the ray's point at that t must lie within the margin of the triangle, including the
-// hits that the test's rounding lets through just outside it; grazing rays and slivers
-// are never culled; and Whitted frames rendered through the culling kernels equal brute
-// force's.
+// Segment culling (host/gridrt/culling/segment_culling.h): wherever the ray/triangle test reports a
+// hit, the ray's point at that t must lie within the margin of the triangle, including the hits
+// that the test's rounding lets through just outside it; grazing rays and slivers are never culled;
+// and Whitted frames rendered through the culling kernels equal brute force's.
+#include "segment_culling.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,7 +16,6 @@
 #include "gridrt_intersector.h"
 #include "prepared_triangles.h"
 #include "renderer.h"
-#include "segment_culling.h"
 #include "test_support.h"
 #include "uniform_grid.h"
 

@@ -1,13 +1,13 @@
-// Binning of traversal lists by PE (host/gridrt/lists/pe_binning.h): every (ray, PE) pair lands once in
-// a task of its PE; a task's rays share their direction's octant and keep ray order.
+// Binning of traversal lists by PE (host/gridrt/lists/pe_binning.h): every (ray, PE) pair lands
+// once in a task of its PE; a task's rays share their direction's octant and keep ray order.
+#include "pe_binning.h"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <random>
 #include <set>
 #include <vector>
-
-#include "pe_binning.h"
 
 namespace {
 
