@@ -18,7 +18,7 @@
  * which differs from v1 whenever v1 - v0 rounded (coordinates of different sign or of
  * magnitudes more than 2x apart), and two triangles sharing v1 then disagree about it.
  * Define GR_TRIANGLE_VERTICES to pass the vertices v1, v2 themselves in place of e1, e2
- * (the watertight layout: README "Accuracy and stability").
+ * (the watertight layout: docs/accuracy.md).
  *
  * Outputs: t (ray parameter, d unit length), u, v the barycentrics of vertices 1 and 2,
  * as gr_intersect_mt. The caller checks t against its own (tmin, best) interval. */
