@@ -15,11 +15,13 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string_view>
 #include <system_error>
 
 #include "errors.h"
+#include "gltf_accessors.h"
 
 namespace gridrt {
 namespace {
@@ -38,27 +40,8 @@ constexpr double kPi = 3.14159265358979323846;
 // ---------------------------------------------------------------------------------------------
 // Messages
 
-// tinygltf reports several problems separated by newlines, and file content (names, the
-// JSON parser's "last read" excerpt) may hold control characters; messages are one line.
-std::string oneLine(const std::string& text) {
-  std::string out;
-  bool pending_break = false;
-  for (char c : text) {
-    if (c == '\n' || c == '\r') {
-      pending_break = true;
-      continue;
-    }
-    if (pending_break && !out.empty()) out += "; ";
-    pending_break = false;
-    out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
-  }
-  while (!out.empty() && (out.back() == ' ' || out.back() == ';')) out.pop_back();
-  return out;
-}
-
-[[noreturn]] void fail(const std::string& label, const std::string& what) {
-  throw SceneError(oneLine(label + ": " + what));
-}
+using gltf::fail;
+using gltf::oneLine;
 
 std::string named(const std::string& kind, size_t index, const std::string& name) {
   std::string s = kind + " " + std::to_string(index);
@@ -219,6 +202,38 @@ void checkJsonDepth(std::string_view json, const std::string& label) {
   }
 }
 
+// What an extension the loader cannot read does to a mesh, for the message that refuses it.
+const char* unsupportedExtensionEffect(const std::string& ext) {
+  if (ext == "KHR_draco_mesh_compression") return " (Draco-compressed meshes)";
+  if (ext == "EXT_meshopt_compression") return " (meshoptimizer-compressed buffers)";
+  return "";
+}
+
+void checkRequiredExtensions(const std::vector<std::string>& required, const std::string& label) {
+  for (const std::string& ext : required) {
+    bool supported = ext == "KHR_lights_punctual" || ext == "KHR_mesh_quantization" ||
+                     ext.rfind("KHR_materials_", 0) == 0 || ext.rfind("KHR_texture_", 0) == 0 ||
+                     ext.rfind("EXT_texture_", 0) == 0;
+    if (!supported)
+      fail(label, "requires extension " + ext + unsupportedExtensionEffect(ext) +
+                      ", which is not supported");
+  }
+}
+
+// The JSON's extensionsRequired, read before tinygltf parses the rest: a compressed mesh's
+// accessors have no buffer view, which tinygltf reports as a malformed file instead of
+// naming the extension. Unreadable JSON is left to tinygltf's own message.
+std::vector<std::string> requiredExtensions(std::string_view json) {
+  std::vector<std::string> out;
+  const nlohmann::json doc = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
+  if (!doc.is_object()) return out;
+  auto it = doc.find("extensionsRequired");
+  if (it == doc.end() || !it->is_array()) return out;
+  for (const auto& ext : *it)
+    if (ext.is_string()) out.push_back(ext.get<std::string>());
+  return out;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Parsing
 
@@ -240,6 +255,7 @@ tinygltf::Model parseModel(const unsigned char* data, size_t size, const std::st
   std::string_view json = jsonText(data, size, binary);
   checkJsonDepth(json, label);
   checkDataUris(json, label);
+  checkRequiredExtensions(requiredExtensions(json), label);
 
   FileGuard guard;
   if (!base_dir.empty()) {
@@ -275,182 +291,40 @@ tinygltf::Model parseModel(const unsigned char* data, size_t size, const std::st
 }
 
 // Extensions that change geometry cannot be ignored; material and texture ones can.
-void checkRequiredExtensions(const tinygltf::Model& model, const std::string& label) {
-  for (const std::string& ext : model.extensionsRequired) {
-    bool supported = ext == "KHR_lights_punctual" || ext.rfind("KHR_materials_", 0) == 0 ||
-                     ext.rfind("KHR_texture_", 0) == 0 || ext.rfind("EXT_texture_", 0) == 0;
-    if (!supported) fail(label, "requires extension " + ext + ", which is not supported");
-  }
-}
 
 // ---------------------------------------------------------------------------------------------
 // Accessors
 
-size_t componentSize(int component_type) {
-  switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT:
-      return 4;
-    default:
-      return 0;  // INT and DOUBLE are not glTF 2.0 accessor types
-  }
-}
-
-const char* componentName(int component_type) {
-  switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-      return "BYTE";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return "UNSIGNED_BYTE";
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-      return "SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return "UNSIGNED_SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-      return "UNSIGNED_INT";
-    case TINYGLTF_COMPONENT_TYPE_FLOAT:
-      return "FLOAT";
-    default:
-      return "an invalid component type";
-  }
-}
-
-const char* typeName(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR:
-      return "SCALAR";
-    case TINYGLTF_TYPE_VEC2:
-      return "VEC2";
-    case TINYGLTF_TYPE_VEC3:
-      return "VEC3";
-    case TINYGLTF_TYPE_VEC4:
-      return "VEC4";
-    case TINYGLTF_TYPE_MAT2:
-      return "MAT2";
-    case TINYGLTF_TYPE_MAT3:
-      return "MAT3";
-    case TINYGLTF_TYPE_MAT4:
-      return "MAT4";
-    default:
-      return "?";
-  }
-}
-
-// A validated accessor: element i starts at data + i * stride, and all count elements lie
-// inside their buffer view, which lies inside its buffer.
-struct AccessorView {
-  const unsigned char* data = nullptr;
-  size_t stride = 0;
-  size_t count = 0;
-  int component_type = 0;
-  int type = 0;
-
-  glm::dvec3 vec3(size_t i) const {
-    float v[3];
-    std::memcpy(v, data + i * stride, sizeof v);
-    return {v[0], v[1], v[2]};
-  }
-
-  uint32_t index(size_t i) const {
-    const unsigned char* p = data + i * stride;
-    switch (component_type) {
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return p[0];
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        uint16_t v;
-        std::memcpy(&v, p, 2);
-        return v;
-      }
-      default: {
-        uint32_t v;
-        std::memcpy(&v, p, 4);
-        return v;
-      }
-    }
-  }
-};
-
-// offset + stride * (count - 1) + element, or nullopt on overflow.
-std::optional<size_t> accessorEnd(size_t offset, size_t stride, size_t count, size_t element) {
-  if (count == 0) return offset;
-  size_t span, end;
-  if (__builtin_mul_overflow(stride, count - 1, &span)) return std::nullopt;
-  if (__builtin_add_overflow(offset, span, &end)) return std::nullopt;
-  if (__builtin_add_overflow(end, element, &end)) return std::nullopt;
-  return end;
-}
-
-AccessorView viewAccessor(const tinygltf::Model& model, int index, const std::string& label) {
-  if (index < 0 || size_t(index) >= model.accessors.size())
-    fail(label, "accessor " + std::to_string(index) + " does not exist (" +
-                    std::to_string(model.accessors.size()) + " accessors)");
-  const tinygltf::Accessor& acc = model.accessors[size_t(index)];
-  const std::string where = "accessor " + std::to_string(index);
-  if (acc.sparse.isSparse) fail(label, where + ": sparse accessors are not supported");
-  if (acc.bufferView < 0 || size_t(acc.bufferView) >= model.bufferViews.size())
-    fail(label, where + ": bufferView " + std::to_string(acc.bufferView) + " does not exist");
-  const tinygltf::BufferView& view = model.bufferViews[size_t(acc.bufferView)];
-  const std::string view_name = "bufferView " + std::to_string(acc.bufferView);
-  if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
-    fail(label, view_name + ": buffer " + std::to_string(view.buffer) + " does not exist");
-  const std::vector<unsigned char>& buffer = model.buffers[size_t(view.buffer)].data;
-  auto view_end = accessorEnd(view.byteOffset, 0, 1, view.byteLength);
-  if (!view_end || *view_end > buffer.size())
-    fail(label, view_name + ": bytes " + std::to_string(view.byteOffset) + " + " +
-                    std::to_string(view.byteLength) + " exceed buffer " +
-                    std::to_string(view.buffer) + " of " + std::to_string(buffer.size()) +
-                    " bytes");
-
-  const size_t component = componentSize(acc.componentType);
-  const int components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(acc.type));
-  if (component == 0 || components <= 0)
-    fail(label, where + ": unsupported component type " + std::to_string(acc.componentType));
-  const size_t element = component * size_t(components);
-  const size_t stride = view.byteStride != 0 ? view.byteStride : element;
-  if (stride < element || stride % component != 0)
-    fail(label, view_name + ": byteStride " + std::to_string(stride) + " does not fit " +
-                    std::to_string(element) + "-byte elements of " + where);
-  auto end = accessorEnd(acc.byteOffset, stride, acc.count, element);
-  if (!end || *end > view.byteLength)
-    fail(label, where + ": " + std::to_string(acc.count) + " elements at offset " +
-                    std::to_string(acc.byteOffset) + " with stride " + std::to_string(stride) +
-                    " exceed " + view_name + " of " + std::to_string(view.byteLength) + " bytes");
-
-  AccessorView out;
-  out.data = buffer.data() + view.byteOffset + acc.byteOffset;
-  out.stride = stride;
-  out.count = acc.count;
-  out.component_type = acc.componentType;
-  out.type = acc.type;
-  return out;
-}
-
-// POSITION and NORMAL: float vectors (quantized attributes need an unsupported extension).
-AccessorView viewVec3(const tinygltf::Model& model, int index, const char* attribute,
-                      const std::string& label) {
-  AccessorView v = viewAccessor(model, index, label);
-  if (v.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT || v.type != TINYGLTF_TYPE_VEC3)
+// POSITION and NORMAL: FLOAT VEC3, or with KHR_mesh_quantization the integer types that
+// extension allows (normalized or not for POSITION, normalized for NORMAL).
+gltf::AccessorData readVec3(const tinygltf::Model& model, int index, const char* attribute,
+                            bool quantized, const std::string& label) {
+  gltf::AccessorData v = gltf::readAccessor(model, index, label);
+  const bool is_normal = std::strcmp(attribute, "NORMAL") == 0;
+  const bool integer_ok =
+      quantized && (v.component_type == TINYGLTF_COMPONENT_TYPE_BYTE ||
+                    v.component_type == TINYGLTF_COMPONENT_TYPE_SHORT ||
+                    (!is_normal && (v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                    v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
+  const bool type_ok = v.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                       (integer_ok && (v.normalized || !is_normal));
+  if (!type_ok || v.type != TINYGLTF_TYPE_VEC3)
     fail(label, "accessor " + std::to_string(index) + ": " + attribute +
-                    " must be FLOAT VEC3, not " + componentName(v.component_type) + " " +
-                    typeName(v.type));
+                    " must be FLOAT VEC3, not " + gltf::componentName(v.component_type) + " " +
+                    gltf::typeName(v.type) + (v.normalized ? " normalized" : "") +
+                    (quantized ? "" : " (integer attributes need KHR_mesh_quantization)"));
   return v;
 }
 
-AccessorView viewIndices(const tinygltf::Model& model, int index, const std::string& label) {
-  AccessorView v = viewAccessor(model, index, label);
+gltf::AccessorData readIndices(const tinygltf::Model& model, int index, const std::string& label) {
+  gltf::AccessorData v = gltf::readAccessor(model, index, label);
   bool unsigned_int = v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                       v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
                       v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
   if (!unsigned_int || v.type != TINYGLTF_TYPE_SCALAR)
     fail(label, "accessor " + std::to_string(index) +
                     ": indices must be UNSIGNED_BYTE/SHORT/INT SCALAR, not " +
-                    componentName(v.component_type) + " " + typeName(v.type));
+                    gltf::componentName(v.component_type) + " " + gltf::typeName(v.type));
   return v;
 }
 
@@ -684,7 +558,7 @@ class SceneBuilder {
 
   Scene build(std::vector<std::string> parse_warnings) {
     scene_.warnings = std::move(parse_warnings);
-    checkRequiredExtensions(model_, label_);
+    checkRequiredExtensions(model_.extensionsRequired, label_);
     convertMaterials();
     traverse(rootNodes());
     if (scene_.positions.empty()) fail(label_, "the scene has no triangles");
@@ -745,6 +619,9 @@ class SceneBuilder {
     enum : char { kUnseen, kOnPath, kDone };
     std::vector<char> state(model_.nodes.size(), kUnseen);
     std::vector<Entry> stack;
+    // World matrices first, so that a skin can find its joints wherever they are.
+    std::vector<std::pair<int, glm::dmat4>> visits;
+    world_of_node_.assign(model_.nodes.size(), std::nullopt);
     for (auto it = roots.rbegin(); it != roots.rend(); ++it)
       stack.push_back({*it, glm::dmat4(1.0), false});
     while (!stack.empty()) {
@@ -764,16 +641,21 @@ class SceneBuilder {
       s = kOnPath;
       const tinygltf::Node& node = model_.nodes[size_t(e.node)];
       const glm::dmat4 world = e.parent_world * localTransform(node, nodeName(e.node), label_);
-      visit(e.node, world);
+      visits.push_back({e.node, world});
+      world_of_node_[size_t(e.node)] = world;
       stack.push_back({e.node, glm::dmat4(1.0), true});
       for (auto it = node.children.rbegin(); it != node.children.rend(); ++it)
         stack.push_back({*it, world, false});
     }
+    for (const auto& [index, world] : visits) visit(index, world);
   }
 
   void visit(int index, const glm::dmat4& world) {
     const tinygltf::Node& node = model_.nodes[size_t(index)];
-    if (node.mesh >= 0) addMesh(node.mesh, world, index);
+    if (node.mesh >= 0)
+      addMesh(node.mesh, world, index);
+    else if (node.skin >= 0)
+      scene_.warnings.push_back(nodeName(index) + ": skin without a mesh; ignored");
     if (node.camera >= 0) {
       if (size_t(node.camera) >= model_.cameras.size())
         fail(label_,
@@ -802,10 +684,44 @@ class SceneBuilder {
       fail(label_,
            nodeName(node_index) + ": mesh " + std::to_string(mesh_index) + " does not exist");
     const tinygltf::Mesh& mesh = model_.meshes[size_t(mesh_index)];
+    const tinygltf::Node& node = model_.nodes[size_t(node_index)];
+    // The still pose's morph weights: the node's, else the mesh's, else zero.
+    const std::vector<double>& weights = node.weights.empty() ? mesh.weights : node.weights;
+    std::optional<std::vector<glm::dmat4>> joints;
+    if (node.skin >= 0) joints = jointMatrices(node.skin, node_index);
     for (size_t p = 0; p < mesh.primitives.size(); ++p)
       addPrimitive(mesh.primitives[p],
                    named("mesh", size_t(mesh_index), mesh.name) + " primitive " + std::to_string(p),
-                   world);
+                   world, weights, joints ? &*joints : nullptr);
+  }
+
+  // Per joint of skin `skin_index`: the joint node's world matrix times its inverse bind
+  // matrix (identity where the skin has none), the matrix a vertex bound to it moves by.
+  std::vector<glm::dmat4> jointMatrices(int skin_index, int node_index) const {
+    if (size_t(skin_index) >= model_.skins.size())
+      fail(label_,
+           nodeName(node_index) + ": skin " + std::to_string(skin_index) + " does not exist");
+    const tinygltf::Skin& skin = model_.skins[size_t(skin_index)];
+    const std::string where = named("skin", size_t(skin_index), skin.name);
+    std::optional<gltf::AccessorData> inverse_bind;
+    if (skin.inverseBindMatrices >= 0) {
+      inverse_bind = gltf::readAccessor(model_, skin.inverseBindMatrices, label_);
+      if (inverse_bind->type != TINYGLTF_TYPE_MAT4 ||
+          inverse_bind->component_type != TINYGLTF_COMPONENT_TYPE_FLOAT ||
+          inverse_bind->count != skin.joints.size())
+        fail(label_, where + ": inverseBindMatrices must be " + std::to_string(skin.joints.size()) +
+                         " FLOAT MAT4");
+    }
+    std::vector<glm::dmat4> out;
+    for (size_t j = 0; j < skin.joints.size(); ++j) {
+      const int joint = skin.joints[j];
+      if (joint < 0 || size_t(joint) >= model_.nodes.size() || !world_of_node_[size_t(joint)])
+        fail(label_, where + ": joint " + std::to_string(joint) +
+                         " is not a node of the scene being loaded");
+      out.push_back(*world_of_node_[size_t(joint)] *
+                    (inverse_bind ? inverse_bind->mat4(j) : glm::dmat4(1.0)));
+    }
+    return out;
   }
 
   int materialIndex(int material, const std::string& where) {
@@ -826,8 +742,87 @@ class SceneBuilder {
     return it == prim.attributes.end() ? -1 : it->second;
   }
 
+  // A morph target's or skin attribute's accessor, which must have one element per vertex.
+  gltf::AccessorData perVertex(int accessor, const std::string& what, size_t vertex_count,
+                               const std::string& where) const {
+    gltf::AccessorData data = gltf::readAccessor(model_, accessor, label_);
+    if (data.count != vertex_count)
+      fail(label_, where + ": " + what + " has " + std::to_string(data.count) + " elements for " +
+                       std::to_string(vertex_count) + " vertices");
+    return data;
+  }
+
+  // Adds the weighted morph-target displacements of `attribute` to `values`.
+  void applyMorphTargets(const tinygltf::Primitive& prim, const std::vector<double>& weights,
+                         const char* attribute, std::vector<glm::dvec3>& values,
+                         const std::string& where) const {
+    for (size_t t = 0; t < prim.targets.size() && t < weights.size(); ++t) {
+      auto it = prim.targets[t].find(attribute);
+      if (it == prim.targets[t].end() || weights[t] == 0.0) continue;
+      const std::string what = "morph target " + std::to_string(t) + " " + attribute;
+      const gltf::AccessorData delta = perVertex(it->second, what, values.size(), where);
+      if (delta.type != TINYGLTF_TYPE_VEC3) fail(label_, where + ": " + what + " must be VEC3");
+      for (size_t i = 0; i < values.size(); ++i) values[i] += weights[t] * delta.vec3(i);
+    }
+  }
+
+  // Per vertex, the skin matrix: the joint matrices weighted by JOINTS_n / WEIGHTS_n, the
+  // weights normalised to sum 1 (some files' do not). Vertices whose weights are all zero
+  // keep the node's own transform (`world`).
+  std::vector<glm::dmat4> skinMatrices(const tinygltf::Primitive& prim,
+                                       const std::vector<glm::dmat4>& joints,
+                                       const glm::dmat4& world, size_t vertex_count,
+                                       const std::string& where) {
+    std::vector<glm::dmat4> sum(vertex_count, glm::dmat4(0.0));
+    std::vector<double> total(vertex_count, 0.0);
+    for (int set = 0;; ++set) {
+      const std::string j_name = "JOINTS_" + std::to_string(set);
+      const std::string w_name = "WEIGHTS_" + std::to_string(set);
+      const int j_index = attribute(prim, j_name.c_str()),
+                w_index = attribute(prim, w_name.c_str());
+      if (j_index < 0 && w_index < 0) break;
+      if (j_index < 0 || w_index < 0)
+        fail(label_,
+             where + ": " +
+                 (j_index < 0 ? w_name + " without " + j_name : j_name + " without " + w_name));
+      const gltf::AccessorData j = perVertex(j_index, j_name, vertex_count, where);
+      const gltf::AccessorData w = perVertex(w_index, w_name, vertex_count, where);
+      if (j.type != TINYGLTF_TYPE_VEC4 || w.type != TINYGLTF_TYPE_VEC4)
+        fail(label_, where + ": " + j_name + " and " + w_name + " must be VEC4");
+      for (size_t v = 0; v < vertex_count; ++v)
+        for (int k = 0; k < 4; ++k) {
+          const double weight = w.at(v, k);
+          if (weight == 0.0) continue;
+          const double joint = j.at(v, k);
+          if (!(weight > 0.0) || !(joint < double(joints.size())))
+            fail(label_,
+                 where + ": vertex " + std::to_string(v) + ": " +
+                     (weight > 0.0 ? j_name + " names joint " + std::to_string(uint64_t(joint)) +
+                                         " of " + std::to_string(joints.size())
+                                   : w_name + " is negative or NaN"));
+          sum[v] += weight * joints[size_t(joint)];
+          total[v] += weight;
+        }
+    }
+    size_t unweighted = 0;
+    for (size_t v = 0; v < vertex_count; ++v) {
+      if (total[v] > 0.0) {
+        sum[v] /= total[v];
+      } else {
+        sum[v] = world;
+        ++unweighted;
+      }
+    }
+    if (unweighted > 0)
+      scene_.warnings.push_back(where + ": " + std::to_string(unweighted) +
+                                " skinned vertices without joint weights keep the node's "
+                                "transform");
+    return sum;
+  }
+
   void addPrimitive(const tinygltf::Primitive& prim, const std::string& where,
-                    const glm::dmat4& world) {
+                    const glm::dmat4& world, const std::vector<double>& morph_weights,
+                    const std::vector<glm::dmat4>* joints) {
     if (prim.mode < -1 || prim.mode > TINYGLTF_MODE_TRIANGLE_FAN)
       fail(label_, where + ": mode " + std::to_string(prim.mode) + " is not a glTF mode");
     if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
@@ -841,29 +836,47 @@ class SceneBuilder {
       ++scene_.skipped_primitives;
       return;
     }
-    const AccessorView positions = viewVec3(model_, position_index, "POSITION", label_);
-    std::optional<AccessorView> normals;
+    const gltf::AccessorData position_data =
+        readVec3(model_, position_index, "POSITION", quantized_, label_);
+    const size_t vertex_count = position_data.count;
+    std::vector<glm::dvec3> positions(vertex_count);
+    for (size_t i = 0; i < vertex_count; ++i) positions[i] = position_data.vec3(i);
+    std::optional<std::vector<glm::dvec3>> normals;
     if (int n = attribute(prim, "NORMAL"); n >= 0) {
-      normals = viewVec3(model_, n, "NORMAL", label_);
-      if (normals->count != positions.count)
+      const gltf::AccessorData normal_data = readVec3(model_, n, "NORMAL", quantized_, label_);
+      if (normal_data.count != vertex_count)
         fail(label_, "accessor " + std::to_string(n) + ": NORMAL count " +
-                         std::to_string(normals->count) + " differs from POSITION count " +
-                         std::to_string(positions.count));
+                         std::to_string(normal_data.count) + " differs from POSITION count " +
+                         std::to_string(vertex_count));
+      normals.emplace(vertex_count);
+      for (size_t i = 0; i < vertex_count; ++i) (*normals)[i] = normal_data.vec3(i);
     }
-    const std::vector<uint32_t> indices = triangleIndices(prim, positions.count, where);
+    applyMorphTargets(prim, morph_weights, "POSITION", positions, where);
+    if (normals) applyMorphTargets(prim, morph_weights, "NORMAL", *normals, where);
+    const std::vector<uint32_t> indices = triangleIndices(prim, vertex_count, where);
     const int material = materialIndex(prim.material, where);
+    // A skinned mesh moves with its joints; the node's own transform does not apply (glTF).
+    const bool skinned = joints && attribute(prim, "JOINTS_0") >= 0;
+    const std::vector<glm::dmat4> skin =
+        skinned ? skinMatrices(prim, *joints, world, vertex_count, where)
+                : std::vector<glm::dmat4>();
     const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(world)));
-    const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
+    const bool node_mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
 
     for (size_t t = 0; t < indices.size(); t += 3) {
       glm::vec3 p[3], n[3];
       for (int k = 0; k < 3; ++k) {
         const size_t vertex = indices[t + size_t(k)];
-        p[k] = glm::vec3(transformPoint(world, positions.vec3(vertex)));
+        const glm::dmat4& m = skinned ? skin[vertex] : world;
+        p[k] = glm::vec3(transformPoint(m, positions[vertex]));
+        const glm::dmat3 to_world =
+            skinned ? glm::transpose(glm::inverse(glm::dmat3(m))) : normal_matrix;
         // Zero marks "no usable normal" (absent, zero or NaN in the file).
-        n[k] = normals ? unitOr(normal_matrix * normals->vec3(vertex), glm::vec3(0.0f))
-                       : glm::vec3(0.0f);
+        n[k] = normals ? unitOr(to_world * (*normals)[vertex], glm::vec3(0.0f)) : glm::vec3(0.0f);
       }
+      // A skinned triangle mirrors where its first vertex's skin matrix does.
+      const bool mirrored =
+          skinned ? glm::determinant(glm::dmat3(skin[indices[t]])) < 0.0 : node_mirrored;
       if (!isFinite(p[0]) || !isFinite(p[1]) || !isFinite(p[2])) {
         ++scene_.dropped_degenerate;
         continue;
@@ -901,14 +914,14 @@ class SceneBuilder {
       for (size_t i = 0; i < vertex_count; ++i) out[i] = uint32_t(i);
       return out;
     }
-    const AccessorView indices = viewIndices(model_, prim.indices, label_);
+    const gltf::AccessorData indices = readIndices(model_, prim.indices, label_);
     if (indices.count % 3 != 0)
       fail(label_, "accessor " + std::to_string(prim.indices) + ": " +
                        std::to_string(indices.count) +
                        " indices is not a multiple of 3 for triangles");
     out.resize(indices.count);
     for (size_t i = 0; i < indices.count; ++i) {
-      out[i] = indices.index(i);
+      out[i] = uint32_t(indices.at(i, 0));
       if (out[i] >= vertex_count)
         fail(label_, "accessor " + std::to_string(prim.indices) + ": index " +
                          std::to_string(out[i]) + " out of range for " +
@@ -973,6 +986,11 @@ class SceneBuilder {
   std::vector<bool> has_normals_;  // per triangle: from a primitive with NORMAL
   std::vector<CameraNode> camera_nodes_;
   int default_material_ = -1;
+  // Per node: its world matrix, once the traversal has reached it.
+  std::vector<std::optional<glm::dmat4>> world_of_node_;
+  // The file declares KHR_mesh_quantization: integer POSITION and NORMAL are allowed.
+  bool quantized_ = std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(),
+                              "KHR_mesh_quantization") != model_.extensionsUsed.end();
 };
 
 [[noreturn]] void cannotOpen(const std::string& path, const std::string& reason) {

@@ -13,6 +13,12 @@
 // - Normals: world-space (inverse transpose), unit length; a primitive without NORMAL gets its
 //   triangles' geometric normals when any other primitive has normals, and Scene::normals
 //   stays empty when none has.
+// - Accessors: every component type, normalized integers, sparse accessors
+//   (gltf_accessors.h); integer POSITION/NORMAL where the file declares
+//   KHR_mesh_quantization. Draco and meshopt compression are refused, naming the extension.
+// - The still pose: morph targets at the node's weights (else the mesh's); a skinned mesh
+//   follows its joints' world matrices times their inverse bind matrices, weighted by
+//   JOINTS_n/WEIGHTS_n normalised to sum 1, and ignores its own node's transform (glTF).
 // - Triangles with a NaN/Inf world coordinate are dropped (Scene::dropped_degenerate).
 // - Materials: Scene::materials[i] is glTF material i; a "default" Material{} is appended once
 //   if some primitive has no material. Textures are ignored (never decoded), with a warning.

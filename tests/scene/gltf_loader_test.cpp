@@ -54,18 +54,29 @@ std::string rawBytes(const std::vector<T>& values) {
 // appends a bufferView (4-byte aligned) and an accessor over it and returns the accessor.
 class GltfBuilder {
  public:
+  // `extra`: further accessor members, e.g. ",\"normalized\":true".
   int addAccessor(const std::string& bytes, int component_type, size_t count,
-                  const std::string& type, int stride = 0, size_t offset = 0) {
+                  const std::string& type, int stride = 0, size_t offset = 0,
+                  const std::string& extra = "") {
+    const int view = addView(bytes, stride);
+    return addRawAccessor(
+        "{\"bufferView\":" + std::to_string(view) + ",\"byteOffset\":" + std::to_string(offset) +
+        ",\"componentType\":" + std::to_string(component_type) +
+        ",\"count\":" + std::to_string(count) + ",\"type\":\"" + type + "\"" + extra + "}");
+  }
+  // A bufferView over `bytes` (4-byte aligned in the buffer); returns its index.
+  int addView(const std::string& bytes, int stride = 0) {
     const size_t view_offset = bin_.size();
     bin_ += bytes;
     bin_.resize((bin_.size() + 3) / 4 * 4, '\0');
     views_.push_back("{\"buffer\":0,\"byteOffset\":" + std::to_string(view_offset) +
                      ",\"byteLength\":" + std::to_string(bytes.size()) +
                      (stride ? ",\"byteStride\":" + std::to_string(stride) : "") + "}");
-    accessors_.push_back("{\"bufferView\":" + std::to_string(views_.size() - 1) +
-                         ",\"byteOffset\":" + std::to_string(offset) +
-                         ",\"componentType\":" + std::to_string(component_type) +
-                         ",\"count\":" + std::to_string(count) + ",\"type\":\"" + type + "\"}");
+    return int(views_.size() - 1);
+  }
+  // An accessor given as JSON; returns its index.
+  int addRawAccessor(const std::string& json) {
+    accessors_.push_back(json);
     return int(accessors_.size() - 1);
   }
   int vec3(const std::vector<float>& xyz) {
@@ -581,17 +592,169 @@ TEST(GltfLoader, RejectsNonFloatPositions) {
                      "accessor 0: POSITION must be FLOAT VEC3, not UNSIGNED_SHORT VEC3");
 }
 
-TEST(GltfLoader, RejectsSparseAccessor) {
+// A sparse accessor: its base (a buffer view, or zeros without one) with the listed
+// elements replaced.
+std::string sparseAccessor(GltfBuilder& b, int base_view, const std::vector<uint16_t>& indices,
+                           const std::vector<float>& values, size_t count) {
+  const int index_view = b.addView(rawBytes(indices));
+  const int value_view = b.addView(rawBytes(values));
+  return std::string("{") +
+         (base_view >= 0 ? "\"bufferView\":" + std::to_string(base_view) + "," : "") +
+         "\"componentType\":5126,\"count\":" + std::to_string(count) +
+         ",\"type\":\"VEC3\",\"sparse\":{\"count\":" + std::to_string(indices.size()) +
+         ",\"indices\":{\"bufferView\":" + std::to_string(index_view) +
+         ",\"componentType\":5123},\"values\":{\"bufferView\":" + std::to_string(value_view) +
+         "}}}";
+}
+
+TEST(GltfLoader, SparseAccessorReplacesTheListedElements) {
   GltfBuilder b;
-  b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
-  const std::string sparse =
-      "{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"sparse\":"
-      "{\"count\":1,\"indices\":{\"bufferView\":0,\"componentType\":5125},"
-      "\"values\":{\"bufferView\":0}}}";
-  std::string json = b.json(singleMesh(primitive(1)));
-  const size_t accessors_end = json.find(']', json.find("\"accessors\":["));
-  json.insert(accessors_end, "," + sparse);  // becomes accessor 1
-  EXPECT_SCENE_ERROR(loadJson(json), "accessor 1: sparse accessors are not supported");
+  // The quad with vertex 2 at (5, 5, 0): the sparse values put it back at (1, 1, 0).
+  std::vector<float> moved = kQuad;
+  moved[6] = moved[7] = 5;
+  const int base = b.addView(rawBytes(moved));
+  const int pos = b.addRawAccessor(sparseAccessor(b, base, {2}, {1, 1, 0}, 4));
+  const int idx = b.indicesU8({0, 1, 2, 0, 2, 3});
+  expectQuad(loadJson(b.json(singleMesh(primitive(pos, idx)))));
+}
+
+TEST(GltfLoader, SparseAccessorWithoutBufferViewStartsFromZeros) {
+  GltfBuilder b;
+  // Vertex 0 is the origin by default; the other three come from the sparse values.
+  const int pos =
+      b.addRawAccessor(sparseAccessor(b, -1, {1, 2, 3}, {1, 0, 0, 1, 1, 0, 0, 1, 0}, 4));
+  const int idx = b.indicesU8({0, 1, 2, 0, 2, 3});
+  expectQuad(loadJson(b.json(singleMesh(primitive(pos, idx)))));
+}
+
+TEST(GltfLoader, RejectsSparseIndicesThatDoNotIncrease) {
+  GltfBuilder b;
+  const int base = b.addView(rawBytes(kQuad));
+  const int pos = b.addRawAccessor(sparseAccessor(b, base, {2, 1}, {1, 1, 0, 1, 0, 0}, 4));
+  const int idx = b.indicesU8({0, 1, 2, 0, 2, 3});
+  EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos, idx)))),
+                     "accessor 0: sparse index 1 does not increase");
+}
+
+TEST(GltfLoader, RejectsSparseIndexOutOfRange) {
+  GltfBuilder b;
+  const int base = b.addView(rawBytes(kQuad));
+  const int pos = b.addRawAccessor(sparseAccessor(b, base, {4}, {1, 1, 0}, 4));
+  EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos)))),
+                     "sparse index 4 out of range for 4 elements");
+}
+
+// KHR_mesh_quantization: integer positions, normalized (c / 32767 for SHORT) or not.
+TEST(GltfLoader, QuantizedPositionsAreDecodedAsTheSpecificationSays) {
+  GltfBuilder b;
+  const std::vector<int16_t> normalized = {0, 0, 0, 32767, 0, 0, 32767, 32767, 0, 0, 32767, 0};
+  const int pos =
+      b.addAccessor(rawBytes(normalized), 5122, 4, "VEC3", 0, 0, ",\"normalized\":true");
+  const std::vector<uint8_t> plain = {0, 0, 0, 2, 0, 0, 2, 2, 0, 0, 2, 0};
+  const int pos2 = b.addAccessor(rawBytes(plain), kUByte, 4, "VEC3");
+  const int idx = b.indicesU8({0, 1, 2, 0, 2, 3});
+  const std::string rest =
+      "\"extensionsUsed\":[\"KHR_mesh_quantization\"],"
+      "\"extensionsRequired\":[\"KHR_mesh_quantization\"]," +
+      singleMesh(primitive(pos, idx) + "," + primitive(pos2, idx));
+  const Scene scene = loadJson(b.json(rest));
+  ASSERT_EQ(scene.triangleCount(), 4u);
+  for (size_t i = 0; i < 6; ++i) {
+    EXPECT_EQ(scene.positions[i], kQuadTriangles[i]);  // 32767 / 32767 is exactly 1
+    EXPECT_EQ(scene.positions[6 + i], 2.0f * kQuadTriangles[i]);
+  }
+}
+
+TEST(GltfLoader, IntegerPositionsWithoutQuantizationExtensionNameIt) {
+  GltfBuilder b;
+  const int pos = b.addAccessor(rawBytes(std::vector<uint16_t>(9, 0)), kUShort, 3, "VEC3");
+  EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos)))), "KHR_mesh_quantization");
+}
+
+TEST(GltfLoader, CompressedMeshesNameTheExtension) {
+  for (const std::string ext : {"KHR_draco_mesh_compression", "EXT_meshopt_compression"}) {
+    // A compressed primitive's accessors have no buffer view.
+    const std::string json =
+        "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"" + ext +
+        "\"],\"extensionsRequired\":[\"" + ext +
+        "\"],\"accessors\":[{\"componentType\":5125,\"count\":3,\"type\":\"SCALAR\"},"
+        "{\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":1},\"indices\":0}]}],"
+        "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]}";
+    EXPECT_SCENE_ERROR(loadJson(json), "requires extension " + ext);
+  }
+}
+
+// Morph targets at the still pose: base + sum of weight * displacement, the node's weights
+// before the mesh's.
+TEST(GltfLoader, MorphTargetsAtTheirDefaultWeights) {
+  GltfBuilder b;
+  const int pos = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const int d0 = b.vec3({0, 0, 2, 0, 0, 0, 0, 0, 0});  // moves vertex 0 along +z
+  const int d1 = b.vec3({0, 0, 0, 4, 0, 0, 0, 0, 0});  // moves vertex 1 along +x
+  const std::string prim = "{\"attributes\":{\"POSITION\":" + std::to_string(pos) +
+                           "},\"targets\":[{\"POSITION\":" + std::to_string(d0) +
+                           "},{\"POSITION\":" + std::to_string(d1) + "}]}";
+  auto doc = [&](const std::string& node_weights) {
+    return b.json("\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0" + node_weights +
+                  "}],\"meshes\":[{\"primitives\":[" + prim + "],\"weights\":[0.5,0.25]}]");
+  };
+  const Scene mesh_weights = loadJson(doc(""));
+  ASSERT_EQ(mesh_weights.triangleCount(), 1u);
+  EXPECT_EQ(mesh_weights.positions[0], glm::vec3(0, 0, 1));  // 0.5 * 2
+  EXPECT_EQ(mesh_weights.positions[1], glm::vec3(2, 0, 0));  // 1 + 0.25 * 4
+  EXPECT_EQ(mesh_weights.positions[2], glm::vec3(0, 1, 0));
+  const Scene node_weights = loadJson(doc(",\"weights\":[0,1]"));
+  EXPECT_EQ(node_weights.positions[0], glm::vec3(0, 0, 0));
+  EXPECT_EQ(node_weights.positions[1], glm::vec3(5, 0, 0));
+}
+
+// A skinned triangle: vertex 0 bound to joint 0 (translated by (0, 0, 3)), vertex 1 to
+// joint 1 (rotated 90 degrees about +z at the origin, inverse bind matrix a translation by
+// (-1, 0, 0)), vertex 2 half to each with weights that sum to 0.5 (normalised to 1). The
+// mesh node's own translation by (100, 0, 0) must not apply.
+TEST(GltfLoader, SkinnedMeshFollowsItsJoints) {
+  GltfBuilder b;
+  const int pos = b.vec3({0, 0, 0, 1, 0, 0, 1, 1, 0});
+  const std::vector<uint8_t> joints = {0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0};
+  const int j = b.addAccessor(rawBytes(joints), kUByte, 3, "VEC4");
+  const int w = b.addAccessor(
+      rawBytes(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 0.25f, 0.25f, 0, 0}), kFloat, 3, "VEC4");
+  std::vector<float> ibm(32, 0.0f);
+  for (int m = 0; m < 2; ++m)
+    for (int d = 0; d < 4; ++d) ibm[size_t(m * 16 + d * 5)] = 1.0f;
+  ibm[16 + 12] = -1.0f;  // joint 1: translation column x = -1
+  const int inverse_bind = b.addAccessor(rawBytes(ibm), kFloat, 2, "MAT4");
+  const std::string rest =
+      "\"scenes\":[{\"nodes\":[0,1,2]}],\"nodes\":[{\"mesh\":0,\"skin\":0,"
+      "\"translation\":[100,0,0]},{\"translation\":[0,0,3]},"
+      "{\"rotation\":[0,0,0.7071067811865476,0.7071067811865476]}],"
+      "\"skins\":[{\"joints\":[1,2],\"inverseBindMatrices\":" +
+      std::to_string(inverse_bind) + "}],\"meshes\":[{\"primitives\":[{\"attributes\":{" +
+      "\"POSITION\":" + std::to_string(pos) + ",\"JOINTS_0\":" + std::to_string(j) +
+      ",\"WEIGHTS_0\":" + std::to_string(w) + "}}]}]";
+  const Scene scene = loadJson(b.json(rest));
+  ASSERT_EQ(scene.triangleCount(), 1u);
+  expectNear(scene.positions[0], {0, 0, 3});  // (0,0,0) + (0,0,3)
+  expectNear(scene.positions[1], {0, 0, 0});  // (1,0,0) - (1,0,0), rotated
+  // (1,1,0): joint 0 gives (1,1,3); joint 1 gives rot((0,1,0)) = (-1,0,0); half each.
+  expectNear(scene.positions[2], {0, 0.5f, 1.5f});
+}
+
+TEST(GltfLoader, RejectsSkinJointOutOfRange) {
+  GltfBuilder b;
+  const int pos = b.vec3({0, 0, 0, 1, 0, 0, 1, 1, 0});
+  const int j = b.addAccessor(rawBytes(std::vector<uint8_t>{0, 0, 0, 0, 7, 0, 0, 0, 0, 0, 0, 0}),
+                              kUByte, 3, "VEC4");
+  const int w = b.addAccessor(rawBytes(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}),
+                              kFloat, 3, "VEC4");
+  const std::string rest =
+      "\"scenes\":[{\"nodes\":[0,1]}],\"nodes\":[{\"mesh\":0,\"skin\":0},{}],"
+      "\"skins\":[{\"joints\":[1]}],\"meshes\":[{\"primitives\":[{\"attributes\":{"
+      "\"POSITION\":" +
+      std::to_string(pos) + ",\"JOINTS_0\":" + std::to_string(j) +
+      ",\"WEIGHTS_0\":" + std::to_string(w) + "}}]}]";
+  EXPECT_SCENE_ERROR(loadJson(b.json(rest)), "vertex 1: JOINTS_0 names joint 7 of 1");
 }
 
 TEST(GltfLoader, RejectsNodeCycle) {

@@ -1,0 +1,51 @@
+// glTF accessors decoded into doubles, every element checked against its buffer view and
+// buffer (tinygltf checks none of it):
+// - every component type; normalized integers mapped as the glTF specification says
+//   (unsigned c / (2^b - 1), signed max(c / (2^(b-1) - 1), -1)), which is what
+//   KHR_mesh_quantization's attributes need;
+// - sparse accessors: the base (the buffer view, or zeros without one) with the listed
+//   elements replaced, their indices strictly increasing and in range.
+// A double holds every glTF component exactly (floats, and integers up to 32 bits), so a
+// FLOAT accessor read here and cast back to float is the file's value bit for bit.
+#pragma once
+#include <tiny_gltf.h>
+
+#include <cstddef>
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+namespace gridrt::gltf {
+
+// tinygltf reports several problems separated by newlines, and file content (names, the
+// JSON parser's "last read" excerpt) may hold control characters; messages are one line.
+std::string oneLine(const std::string& text);
+
+// Throws SceneError("label: what") on one line.
+[[noreturn]] void fail(const std::string& label, const std::string& what);
+
+const char* componentName(int component_type);  // "UNSIGNED_SHORT", ...
+const char* typeName(int type);                 // "VEC3", ...
+
+struct AccessorData {
+  int index = -1;  // the accessor's index in the file, for messages
+  size_t count = 0;
+  int components = 0;  // per element: 1 (SCALAR) .. 16 (MAT4)
+  int component_type = 0;
+  int type = 0;
+  bool normalized = false;
+  std::vector<double> values;  // count * components, element-major
+
+  double at(size_t element, int component) const {
+    return values[element * size_t(components) + size_t(component)];
+  }
+  glm::dvec3 vec3(size_t i) const { return {at(i, 0), at(i, 1), at(i, 2)}; }
+  glm::dvec4 vec4(size_t i) const { return {at(i, 0), at(i, 1), at(i, 2), at(i, 3)}; }
+  // Column-major, as glTF stores matrices.
+  glm::dmat4 mat4(size_t i) const;
+};
+
+// Reads accessor `index` of `model`; `label` names the file in messages.
+AccessorData readAccessor(const tinygltf::Model& model, int index, const std::string& label);
+
+}  // namespace gridrt::gltf
