@@ -256,8 +256,17 @@ void printSummary(const Options& o, const Frame& frame, double median_frame,
 
 }  // namespace
 
-int runApplication(const Options& o) {
-  if (o.list_devices) {
+// The image size: as given, or with no --width/--height (and no --crop, which is placed in
+// the given size) from the scene camera's aspectRatio at the default height.
+Options sizedForCamera(const Options& given, const Camera& camera) {
+  Options o = given;
+  if (!o.size_given && !o.crop && camera.aspect > 0.0f && std::isfinite(camera.aspect))
+    o.width = int(std::clamp(std::lround(double(o.height) * camera.aspect), 1L, 65536L));
+  return o;
+}
+
+int runApplication(const Options& given) {
+  if (given.list_devices) {
     auto devices = listDevices();
     if (devices.empty())
       throw RenderError(
@@ -267,17 +276,19 @@ int runApplication(const Options& o) {
     return 0;
   }
   // Fail on bad output paths and absurd sizes before spending time on anything.
-  validateOutputPath(o.output);
-  for (const auto& aov : o.aovs) validateOutputPath(aov.second, OutputKind::Aov);
-  validateStatsPath(o.stats_json);
-  checkImageFitsHost(o);
+  validateOutputPath(given.output);
+  for (const auto& aov : given.aovs) validateOutputPath(aov.second, OutputKind::Aov);
+  validateStatsPath(given.stats_json);
+  checkImageFitsHost(given);
 
   Stopwatch clock;
-  Scene scene = loadScene(o);
+  Scene scene = loadScene(given);
   double load_ms = clock.ms();
-  if (!o.quiet)
+  if (!given.quiet)
     for (const auto& w : scene.warnings) std::cerr << "gridrt: warning: " << w << '\n';
-  Camera camera = chooseCamera(o, scene);
+  Camera camera = chooseCamera(given, scene);
+  const Options o = sizedForCamera(given, camera);
+  if (o.width != given.width) checkImageFitsHost(o);
 
   ClRuntime runtime(o.device);
   if (!o.quiet)

@@ -150,7 +150,8 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
                  "adaptive depth: skip bounces whose throughput is below this (0: never)")
       ->capture_default_str()
       ->check(CLI::Range(0.0f, 1.0f));
-  app.add_option("--camera", o.camera_name, "use the glTF camera with this name");
+  app.add_option("--camera", o.camera_name,
+                 "use the glTF camera with this name, or the N-th in the scene (from 0)");
   app.add_option("--look-at", raw.look_at, "EX,EY,EZ:TX,TY,TZ camera eye and target");
   app.add_option("--fov", o.fov_degrees, "vertical field of view in degrees")
       ->check(CLI::Range(0.01f, 179.0f));
@@ -229,6 +230,7 @@ std::optional<Options> parseCommandLine(int argc, const char* const* argv) {
     std::replace(what.begin(), what.end(), '\n', ' ');
     throw UsageError(what + " (see gridrt --help)");
   }
+  o.size_given = app.count("--width") > 0 || app.count("--height") > 0;
   finish(o, raw);
   return o;
 }

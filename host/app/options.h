@@ -20,6 +20,9 @@ struct Options {
   std::string output = "gridrt.png";  // PNG/JPEG (sRGB) or EXR (linear) by extension
   int width = 640;
   int height = 480;
+  // --width or --height given: the image keeps that size. Otherwise a scene camera's
+  // aspectRatio sets the width (height 480), as its author framed it.
+  bool size_given = false;
   int spp = 1;
   int max_depth = 5;
   std::string device;  // "" first device, "P:D", or a name substring

@@ -14,7 +14,10 @@ Camera defaultCamera(const Bounds& bounds) {
   float radius = 0.5f * glm::length(bounds.extent());
   if (!(radius > 0.0f)) radius = 1.0f;
   float distance = radius / std::sin(c.yfov * 0.5f);
-  glm::vec3 eye = center + glm::vec3(0.0f, 0.0f, distance);
+  const glm::vec3 towards_eye(std::sin(kDefaultAzimuth) * std::cos(kDefaultElevation),
+                              std::sin(kDefaultElevation),
+                              std::cos(kDefaultAzimuth) * std::cos(kDefaultElevation));
+  glm::vec3 eye = center + distance * towards_eye;
   c.world = glm::inverse(glm::lookAt(eye, center, glm::vec3(0, 1, 0)));
   return c;
 }
@@ -33,7 +36,7 @@ CameraRayGenerator::CameraRayGenerator(const Camera& camera, int width, int heig
     : camera_(camera),
       width_(float(width)),
       height_(float(height)),
-      aspect_(camera.aspect > 0.0f ? camera.aspect : float(width) / float(height)),
+      aspect_(float(width) / float(height)),
       tan_half_(std::tan(camera.yfov * 0.5f)),
       origin_(camera.world[3]) {}
 

@@ -15,8 +15,11 @@
 
 namespace gridrt {
 
-// A camera that frames `bounds`: looking down -Z from in front of the box, so the box's
-// bounding sphere fills the vertical field of view.
+// A camera that frames `bounds` from a three-quarter view (from the front, turned
+// kDefaultAzimuth to the right and raised kDefaultElevation), so that the box's bounding
+// sphere fills the vertical field of view.
+constexpr float kDefaultAzimuth = 0.6108652f;    // 35 degrees about +Y, from +Z towards +X
+constexpr float kDefaultElevation = 0.4363323f;  // 25 degrees above the horizon
 Camera defaultCamera(const Bounds& bounds);
 
 // Eye-to-target camera override (gridrt --look-at), +Y up.

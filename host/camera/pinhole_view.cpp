@@ -9,7 +9,7 @@ PinholeView PinholeView::of(const Camera& camera, int width, int height, PixelWi
   v.world_to_camera = glm::inverse(camera.world);
   v.exact_world_to_camera = glm::inverse(glm::dmat4(camera.world));
   v.tan_half = std::tan(camera.yfov * 0.5f);
-  v.aspect = camera.aspect > 0.0f ? camera.aspect : float(width) / float(height);
+  v.aspect = float(width) / float(height);
   v.width = width;
   v.height = height;
   v.window = window.orWholeImage(width, height);

@@ -8,6 +8,7 @@
 
 #include "bounds.h"
 #include "camera_rays.h"
+#include "default_lighting.h"
 #include "pixel_blocks.h"
 #include "prepared_triangles.h"
 #include "stopwatch.h"
@@ -18,22 +19,6 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 constexpr float kInf = std::numeric_limits<float>::infinity();
-
-// A light for scenes without one: at the camera, raised by a tenth of the distance to the
-// scene's centre, delivering an irradiance of pi there, so a white Lambert surface facing
-// it renders at its albedo.
-Light defaultLight(const Scene& scene, const Camera& camera) {
-  Bounds b = sceneBounds(scene);
-  glm::vec3 eye(camera.world[3]);
-  glm::vec3 up = glm::normalize(glm::vec3(camera.world[1]));
-  float d = glm::length(b.center() - eye);
-  Light l;
-  l.type = LightType::Point;
-  l.position = eye + 0.1f * d * up;
-  float dl = glm::length(b.center() - l.position);
-  l.intensity = kPi * dl * dl;
-  return l;
-}
 
 GrRay makeRay(const glm::vec3& o, const glm::vec3& d, float tmax, float tmin = 0.0f) {
   return GrRay{o.x, o.y, o.z, tmin, d.x, d.y, d.z, tmax};
@@ -102,7 +87,7 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, Intersector& inters
     geometric_normals_[t] = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
   }
   shading_triangles_ = makeShadingTriangles(scene, geometric_normals_);
-  lights_ = scene.has_lights ? scene.lights : std::vector<Light>{defaultLight(scene, camera)};
+  lights_ = scene.has_lights ? scene.lights : defaultLights(camera);
   for (const Material& m : scene.materials) material_terms_.push_back(surfaceTerms(m));
 }
 

@@ -14,7 +14,8 @@ namespace gridrt {
 
 // How a material splits incoming light, derived from its glTF parameters.
 struct SurfaceTerms {
-  glm::vec3 diffuse;     // Lambert albedo: base * (1 - metallic) * (1 - transmission)
+  glm::vec3 diffuse;     // Lambert albedo: base * ((1 - metallic) * (1 - transmission)
+                         //   + metallic * (1 - (1 - roughness)^2)): a metal's rough share
   glm::vec3 specular;    // Phong highlight colour: mix(0.04, base, metallic) * (1 - roughness)
   float phong_exponent;  // 2 / alpha^2 - 2 with alpha = roughness^2, in [1, 10000]
   glm::vec3 mirror;      // perfect-mirror reflectance: base * metallic * (1 - roughness)^2

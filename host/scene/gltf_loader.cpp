@@ -946,18 +946,22 @@ class SceneBuilder {
     const CameraNode* chosen = &camera_nodes_.front();
     if (!options_.camera_name.empty()) {
       chosen = nullptr;
+      // A number picks the camera at that position in traversal order (as listed below).
+      const std::string& wanted = options_.camera_name;
+      const bool numeric =
+          std::all_of(wanted.begin(), wanted.end(), ::isdigit) && wanted.size() < 9;
       std::string available;
-      for (const CameraNode& c : camera_nodes_) {
-        const std::string& node_name = model_.nodes[size_t(c.node)].name;
-        const std::string& camera_name =
-            model_.cameras[size_t(model_.nodes[size_t(c.node)].camera)].name;
-        if (!chosen && (camera_name == options_.camera_name || node_name == options_.camera_name))
-          chosen = &c;
-        available +=
-            (available.empty() ? "'" : ", '") + camera_name + "' (node '" + node_name + "')";
+      for (size_t i = 0; i < camera_nodes_.size(); ++i) {
+        const CameraNode& c = camera_nodes_[i];
+        const tinygltf::Node& node = model_.nodes[size_t(c.node)];
+        const std::string& camera_name = model_.cameras[size_t(node.camera)].name;
+        const bool match =
+            numeric ? std::stoul(wanted) == i : camera_name == wanted || node.name == wanted;
+        if (!chosen && match) chosen = &c;
+        available += (available.empty() ? "" : ", ") + std::to_string(i) + " = " +
+                     named("camera", size_t(node.camera), camera_name) + " on " + nodeName(c.node);
       }
-      if (!chosen)
-        fail(label_, "camera '" + options_.camera_name + "' not found; available: " + available);
+      if (!chosen) fail(label_, "camera '" + wanted + "' not found; available: " + available);
     }
     const tinygltf::Node& node = model_.nodes[size_t(chosen->node)];
     scene_.camera =

@@ -41,8 +41,9 @@
 namespace gridrt {
 
 struct GltfLoadOptions {
-  // Empty: the first camera in traversal order. Otherwise the first camera node whose camera
-  // name or node name equals this; a SceneError lists the available names if none does.
+  // Empty: the first camera in traversal order. A number N: the N-th camera node in
+  // traversal order (from 0). Otherwise the first camera node whose camera name or node
+  // name equals this. A SceneError lists the available cameras if none does.
   std::string camera_name;
 };
 

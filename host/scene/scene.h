@@ -40,7 +40,8 @@ struct Camera {
   bool orthographic = false;
   float yfov = 0.6981317f;         // radians (perspective)
   float xmag = 1.0f, ymag = 1.0f;  // half extents (orthographic)
-  float aspect = 0.0f;             // 0 = take it from the image
+  float aspect = 0.0f;             // glTF aspectRatio, 0 if none: sizes an image given no size;
+                                   // the rays always take the aspect of the image
   glm::mat4 world{1.0f};           // camera-to-world (looks down local -Z, +Y up)
 };
 

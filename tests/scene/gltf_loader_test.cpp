@@ -442,8 +442,22 @@ TEST(GltfLoader, PicksFirstCameraByDefaultAndNamedCameraOnRequest) {
   EXPECT_FLOAT_EQ(by_camera.camera.world[3].x, 5.0f);
   EXPECT_EQ(loadJson(json, GltfLoadOptions{"side"}).camera.name, "cam_b");  // by node name
   EXPECT_SCENE_ERROR(loadJson(json, GltfLoadOptions{"top"}),
-                     "camera 'top' not found; available: 'cam_a' (node 'front'), 'cam_b' (node "
-                     "'side')");
+                     "camera 'top' not found; available: 0 = camera 0 'cam_a' on node 1 "
+                     "'front', 1 = camera 1 'cam_b' on node 2 'side'");
+}
+
+// Unnamed cameras (common in real files) are chosen by their position in traversal order.
+TEST(GltfLoader, PicksACameraByIndex) {
+  GltfBuilder b;
+  std::string json = twoCameraScene(b);
+  for (const char* name :
+       {"\"name\":\"cam_a\",", "\"name\":\"cam_b\",", "\"name\":\"front\",", "\"name\":\"side\","})
+    json.erase(json.find(name), std::string(name).size());
+  EXPECT_FLOAT_EQ(loadJson(json, GltfLoadOptions{"1"}).camera.world[3].x, 5.0f);
+  EXPECT_FLOAT_EQ(loadJson(json, GltfLoadOptions{"0"}).camera.world[3].z, 1.0f);
+  EXPECT_SCENE_ERROR(loadJson(json, GltfLoadOptions{"2"}),
+                     "camera '2' not found; available: 0 = camera 0 on node 1, 1 = camera 1 on "
+                     "node 2");
 }
 
 TEST(GltfLoader, ReadsPunctualLightsWithWhiteDefaultColor) {
