@@ -26,5 +26,13 @@ TEST(Readme, CliReferenceEqualsHelpText) {
   EXPECT_EQ(block, help + "\n") << "run tools/update_readme_cli.sh";
 }
 
+// The README is for users: at most kMaxReadmeBytes, the rest lives in docs/.
+TEST(Readme, StaysShort) {
+  constexpr size_t kMaxReadmeBytes = 15000;
+  std::ifstream in(test::sourcePath("README.md"), std::ios::binary | std::ios::ate);
+  ASSERT_TRUE(in) << "README.md missing";
+  EXPECT_LE(size_t(in.tellg()), kMaxReadmeBytes) << "move detail into docs/";
+}
+
 }  // namespace
 }  // namespace gridrt
