@@ -88,9 +88,9 @@ auto during(const std::string& what, Step&& step) -> decltype(step()) {
 Scene loadScene(const Options& o) {
   if (!o.scene.empty()) return loadGltfFile(o.scene, GltfLoadOptions{o.camera_name});
   Scene scene = makeDefaultScene();
-  if (!o.camera_name.empty() && o.camera_name != scene.camera.name)
-    throw SceneError("the built-in default scene has no camera '" + o.camera_name +
-                     "' (its only camera is '" + scene.camera.name + "')");
+  if (!o.camera_name.empty() && o.camera_name != scene.camera.name && o.camera_name != "0")
+    throw UsageError("--camera: the built-in default scene has no camera '" + o.camera_name +
+                     "' (its only camera is 0 = '" + scene.camera.name + "')");
   return scene;
 }
 
@@ -113,8 +113,11 @@ void validateStatsPath(const std::string& path) {
 Camera chooseCamera(const Options& o, const Scene& scene) {
   Camera camera = scene.has_camera ? scene.camera : defaultCamera(sceneBounds(scene));
   if (o.eye) {
-    float yfov = camera.orthographic ? 0.6981317f : camera.yfov;
-    camera = lookAtCamera(*o.eye, *o.target, yfov);
+    // Moved and turned, the camera keeps its projection (an orthographic one stays so).
+    Camera looked = lookAtCamera(*o.eye, *o.target, camera.yfov);
+    looked.orthographic = camera.orthographic;
+    looked.xmag = camera.xmag, looked.ymag = camera.ymag, looked.aspect = camera.aspect;
+    camera = looked;
   }
   if (o.fov_degrees) {
     camera.orthographic = false;
@@ -135,15 +138,15 @@ std::vector<float> aovData(const PrimaryAovs& a, const std::string& name, int& c
 
 // Writes one image or AOV, honouring --crop: the renderer's film holds the window's pixels
 // (the whole image without --crop); with --crop-output full they are placed in a
-// full-size image, zero outside; with window, the window alone at its offset
-// (host/image/window_output.h).
+// full-size image, `outside` (black, or an AOV's miss value) around it; with window, the
+// window alone at its offset (host/image/window_output.h).
 void writeCropped(const Options& o, const std::string& path, int channels, std::vector<float> data,
-                  OutputKind kind) {
+                  OutputKind kind, float outside = 0.0f) {
   if (o.crop && o.crop_output == CropOutput::Window) {
     writeWindowImage(path, *o.crop, o.width, o.height, channels, data);
     return;
   }
-  if (o.crop) data = placeWindow(data, o.width, o.height, channels, *o.crop);
+  if (o.crop) data = placeWindow(data, o.width, o.height, channels, *o.crop, outside);
   if (kind == OutputKind::Image)
     writeImage(path, Film{o.width, o.height, std::move(data)});
   else
@@ -155,7 +158,11 @@ void writeOutputs(const Options& o, const Frame& frame) {
   for (const auto& aov : o.aovs) {
     int channels = 1;
     std::vector<float> data = aovData(frame.aovs, aov.first, channels);
-    writeCropped(o, aov.second, channels, std::move(data), OutputKind::Aov);
+    // Outside a crop window nothing was hit: the documented miss value of ids and depth.
+    const bool miss_is_minus_one =
+        aov.first == "primid" || aov.first == "pe" || aov.first == "depth";
+    writeCropped(o, aov.second, channels, std::move(data), OutputKind::Aov,
+                 miss_is_minus_one ? -1.0f : 0.0f);
   }
 }
 
@@ -284,8 +291,10 @@ int runApplication(const Options& given) {
   Stopwatch clock;
   Scene scene = loadScene(given);
   double load_ms = clock.ms();
-  if (!given.quiet)
+  if (!given.quiet) {
+    for (const auto& w : given.warnings) std::cerr << "gridrt: warning: " << w << '\n';
     for (const auto& w : scene.warnings) std::cerr << "gridrt: warning: " << w << '\n';
+  }
   Camera camera = chooseCamera(given, scene);
   const Options o = sizedForCamera(given, camera);
   if (o.width != given.width) checkImageFitsHost(o);

@@ -1,8 +1,11 @@
 #include "options.h"
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 #include <regex>
+#include <set>
+#include <sstream>
 
 #include "errors.h"
 
@@ -11,6 +14,51 @@ namespace gridrt {
 namespace {
 
 const char* const kAovNames[] = {"depth", "primid", "normal", "tests", "pe", "listlen"};
+
+// The checks of every numeric option, one message each kind of mistake:
+// "expected an integer in 1..4096, got '1.5'", "expected a finite number in 0..1, got 'nan'".
+CLI::Validator integerIn(long lo, long hi) {
+  const std::string range = std::to_string(lo) + ".." + std::to_string(hi);
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        size_t used = 0;
+        long v = 0;
+        try {
+          v = std::stol(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != text.size()) return "expected an integer, got '" + text + "'";
+        if (v < lo || v > hi) return "expected an integer in " + range + ", got '" + text + "'";
+        return "";
+      },
+      range);
+}
+
+std::string formatNumber(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+CLI::Validator numberIn(double lo, double hi) {
+  const std::string range = formatNumber(lo) + ".." + formatNumber(hi);
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        size_t used = 0;
+        double v = 0;
+        try {
+          v = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != text.size()) return "expected a number, got '" + text + "'";
+        if (!std::isfinite(v) || v < lo || v > hi)
+          return "expected a finite number in " + range + ", got '" + text + "'";
+        return "";
+      },
+      range);
+}
 
 glm::vec3 parseVec3(const std::string& flag, const std::string& text) {
   static const std::regex three(R"(^\s*([^,]+),([^,]+),([^,]+)\s*$)");
@@ -76,7 +124,52 @@ struct RawOptions {
   std::string accel = "gridrt", grid = "auto", background, ray_offset = "robust", look_at;
   std::string crop, crop_output = "full", intersector = "mt", aa = "uniform";
   std::vector<std::string> aovs;
+  std::set<std::string> given;  // the options on the command line, e.g. "--spp"
 };
+
+// Options that only mean something beside another, refused alone instead of ignored.
+// An option that changes nothing beside another is warned about, and the statistics say
+// what was rendered.
+void checkCombinations(Options& o, const RawOptions& raw) {
+  auto given = [&](const char* flag) { return raw.given.count(flag) > 0; };
+  if (o.adaptive_aa && given("--spp") && o.spp != 1) {
+    o.warnings.push_back("--spp " + std::to_string(o.spp) +
+                         " has no effect with --aa adaptive, which takes a centre sample and "
+                         "--aa-samples more where neighbours differ");
+    o.spp = 1;
+  }
+  for (const char* flag : {"--aa-samples", "--aa-threshold"})
+    if (given(flag) && !o.adaptive_aa)
+      throw UsageError(std::string(flag) + ": only with --aa adaptive");
+  if (given("--grid-density") && !o.grid.automatic)
+    throw UsageError(
+        "--grid-density: only with --grid auto (an explicit --grid fixes the "
+        "resolution)");
+  if (given("--crop-output") && !o.crop) throw UsageError("--crop-output: only with --crop");
+  const bool has_pes = o.accel == AccelKind::GridRt || o.accel == AccelKind::Dda;
+  for (const auto& aov : o.aovs)
+    if (!has_pes && (aov.first == "pe" || aov.first == "listlen"))
+      throw UsageError("--aov " + aov.first +
+                       ": only the grid intersectors (--accel gridrt, "
+                       "dda) have PEs and traversal lists");
+}
+
+// Two outputs on one path would leave only the last: refused.
+void checkDistinctOutputs(const Options& o) {
+  namespace fs = std::filesystem;
+  std::vector<std::pair<std::string, std::string>> outputs{{"-o", o.output}};
+  for (const auto& aov : o.aovs) outputs.emplace_back("--aov " + aov.first, aov.second);
+  if (!o.stats_json.empty()) outputs.emplace_back("--stats-json", o.stats_json);
+  std::error_code ec;
+  auto key = [&](const std::string& path) {
+    return fs::weakly_canonical(fs::absolute(path, ec), ec).string();
+  };
+  for (size_t i = 0; i < outputs.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (key(outputs[i].second) == key(outputs[j].second))
+        throw UsageError(outputs[i].first + ": writes '" + outputs[i].second + "', the file " +
+                         outputs[j].first + " writes");
+}
 
 void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.description(
@@ -88,16 +181,16 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
       ->capture_default_str();
   app.add_option("--width", o.width, "image width in pixels")
       ->capture_default_str()
-      ->check(CLI::Range(1, 65536));
+      ->check(integerIn(1, 65536));
   app.add_option("--height", o.height, "image height in pixels")
       ->capture_default_str()
-      ->check(CLI::Range(1, 65536));
+      ->check(integerIn(1, 65536));
   app.add_option("--spp", o.spp, "samples per pixel (jittered when > 1)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 4096));
+      ->check(integerIn(1, 4096));
   app.add_option("--max-depth", o.max_depth, "reflection/refraction bounces")
       ->capture_default_str()
-      ->check(CLI::Range(0, 64));
+      ->check(integerIn(0, 64));
   app.add_option("--device", o.device, "OpenCL device: P:D or part of its name (default: first)");
   app.add_flag("--list-devices", o.list_devices, "list OpenCL devices and exit");
   app.add_option("--accel", raw.accel,
@@ -108,7 +201,7 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.add_option("--grid-density", o.grid.density,
                  "lambda of the auto resolution R_i = d_i*cbrt(lambda*N/V)")
       ->capture_default_str()
-      ->check(CLI::Range(0.001f, 1000.0f));
+      ->check(numberIn(0.001, 1000.0));
   app.add_flag("--pe-interrupt", o.pe_interrupt,
                "gridrt: in every batch a PE skips rays an earlier PE has hit (the paper's "
                "interrupt; camera rays always use it)");
@@ -116,17 +209,20 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
                "primary rays only, headlight shading (the paper's measurement)");
   app.add_option("--aov", raw.aovs,
                  "NAME=FILE (repeatable; .exr): depth, primid, normal, tests, pe, listlen")
-      ->allow_extra_args(false);  // one value per --aov, so a scene path may follow
+      ->type_name("NAME=FILE")
+      ->expected(1)  // one value per --aov (the help shows no "..."), so a scene may follow
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->allow_extra_args(false);
   app.add_option("--repeat", o.repeat, "render N more frames after the first, for timing")
       ->capture_default_str()
-      ->check(CLI::Range(0, 100000));
+      ->check(integerIn(0, 100000));
   app.add_option("--stats-json", o.stats_json, "write statistics as JSON to FILE");
   app.add_flag("--stats", o.stats, "print a statistics table");
   app.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
   app.add_option("--background", raw.background, "background colour R,G,B (linear)");
   app.add_option("--ambient", o.ambient, "ambient factor (times diffuse albedo)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0f, 1000.0f));
+      ->check(numberIn(0.0, 1000.0));
   app.add_option("--ray-offset", raw.ray_offset,
                  "secondary ray origins: robust (scale-aware) or epsilon=E")
       ->capture_default_str();
@@ -141,20 +237,20 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
       ->check(CLI::IsMember({"uniform", "adaptive"}));
   app.add_option("--aa-samples", o.aa_samples, "adaptive: extra samples per refined pixel")
       ->capture_default_str()
-      ->check(CLI::Range(1, 4096));
+      ->check(integerIn(1, 4096));
   app.add_option("--aa-threshold", o.aa_threshold,
                  "adaptive: largest neighbour difference (linear, any channel) left alone")
       ->capture_default_str()
-      ->check(CLI::Range(0.0f, 1000.0f));
+      ->check(numberIn(0.0, 1000.0));
   app.add_option("--min-path-weight", o.min_path_weight,
                  "adaptive depth: skip bounces whose throughput is below this (0: never)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0f, 1.0f));
+      ->check(numberIn(0.0, 1.0));
   app.add_option("--camera", o.camera_name,
                  "use the glTF camera with this name, or the N-th in the scene (from 0)");
   app.add_option("--look-at", raw.look_at, "EX,EY,EZ:TX,TY,TZ camera eye and target");
   app.add_option("--fov", o.fov_degrees, "vertical field of view in degrees")
-      ->check(CLI::Range(0.01f, 179.0f));
+      ->check(numberIn(0.01, 179.0));
   app.add_option("--crop", raw.crop,
                  "X0,Y0,X1,Y1 render only pixels [X0,X1) x [Y0,Y1) (tiles: tools/merge_tiles)");
   app.add_option("--crop-output", raw.crop_output,
@@ -208,6 +304,8 @@ void finish(Options& o, const RawOptions& raw) {
           spec + "'");
     o.aovs.emplace_back(name, spec.substr(eq + 1));
   }
+  checkCombinations(o, raw);
+  checkDistinctOutputs(o);
 }
 
 }  // namespace
@@ -231,6 +329,8 @@ std::optional<Options> parseCommandLine(int argc, const char* const* argv) {
     throw UsageError(what + " (see gridrt --help)");
   }
   o.size_given = app.count("--width") > 0 || app.count("--height") > 0;
+  for (const CLI::Option* option : app.get_options())
+    if (option->count() > 0) raw.given.insert(option->get_name());
   finish(o, raw);
   return o;
 }

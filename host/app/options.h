@@ -49,6 +49,7 @@ struct Options {
   std::optional<float> fov_degrees;           // --fov override (vertical, degrees)
   std::optional<PixelWindow> crop;            // --crop: render only this window of the image
   CropOutput crop_output = CropOutput::Full;  // --crop-output full | window
+  std::vector<std::string> warnings;          // options that have no effect, said once
 };
 
 // Parses argv. Returns nullopt when --help or --version was handled (printed, exit 0).

@@ -31,8 +31,8 @@ PixelWindow parseCropWindow(const std::string& text, int width, int height) {
 }
 
 std::vector<float> placeWindow(const std::vector<float>& window_data, int width, int height,
-                               int channels, const PixelWindow& window) {
-  std::vector<float> out(size_t(width) * height * channels, 0.0f);
+                               int channels, const PixelWindow& window, float outside) {
+  std::vector<float> out(size_t(width) * height * channels, outside);
   const size_t row = size_t(window.width()) * channels;
   for (int y = window.y0; y < window.y1; ++y)
     std::copy_n(window_data.begin() + size_t(y - window.y0) * row, row,

@@ -28,8 +28,8 @@ PixelWindow parseCropWindow(const std::string& text, int width, int height);
 
 // The window's pixels (row-major, window.width() x window.height() pixels of `channels`
 // interleaved values, as the renderer's film holds them) placed in a width x height image,
-// zero outside the window.
+// `outside` outside the window (the AOV's miss value: -1 for ids and depth, else 0).
 std::vector<float> placeWindow(const std::vector<float>& window_data, int width, int height,
-                               int channels, const PixelWindow& window);
+                               int channels, const PixelWindow& window, float outside = 0.0f);
 
 }  // namespace gridrt

@@ -940,7 +940,8 @@ class SceneBuilder {
   void chooseCamera() {
     if (camera_nodes_.empty()) {
       if (!options_.camera_name.empty())
-        fail(label_, "camera '" + options_.camera_name + "' not found: the scene has no camera");
+        throw UsageError(oneLine(label_ + ": --camera '" + options_.camera_name +
+                                 "' not found: the scene has no camera"));
       return;
     }
     const CameraNode* chosen = &camera_nodes_.front();
@@ -961,7 +962,10 @@ class SceneBuilder {
         available += (available.empty() ? "" : ", ") + std::to_string(i) + " = " +
                      named("camera", size_t(node.camera), camera_name) + " on " + nodeName(c.node);
       }
-      if (!chosen) fail(label_, "camera '" + wanted + "' not found; available: " + available);
+      // The name came from the command line: a usage error, not a broken file.
+      if (!chosen)
+        throw UsageError(
+            oneLine(label_ + ": camera '" + wanted + "' not found; available: " + available));
     }
     const tinygltf::Node& node = model_.nodes[size_t(chosen->node)];
     scene_.camera =

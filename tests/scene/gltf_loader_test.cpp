@@ -138,22 +138,26 @@ Scene loadJson(const std::string& json, const GltfLoadOptions& options = {}) {
                             "test.gltf", options);
 }
 
-// The SceneError message of `f`, or "<no error>".
+// The message of the `Error` `f` throws, or "<no error>".
+template <typename Error>
 std::string errorOf(const std::function<void()>& f) {
   try {
     f();
-  } catch (const SceneError& e) {
+  } catch (const Error& e) {
     return e.what();
   }
   return "<no error>";
 }
 
-#define EXPECT_SCENE_ERROR(statement, substring)                                       \
+#define EXPECT_ERROR(Error, statement, substring)                                      \
   do {                                                                                 \
-    const std::string message_ = errorOf([&] { statement; });                          \
+    const std::string message_ = errorOf<Error>([&] { statement; });                   \
     EXPECT_NE(message_.find(substring), std::string::npos) << message_;                \
     EXPECT_EQ(message_.find('\n'), std::string::npos) << "not one line: " << message_; \
   } while (0)
+#define EXPECT_SCENE_ERROR(statement, substring) EXPECT_ERROR(SceneError, statement, substring)
+// A bad --camera is the user's mistake, not the file's: a usage error.
+#define EXPECT_USAGE_ERROR(statement, substring) EXPECT_ERROR(UsageError, statement, substring)
 
 void expectNear(const glm::vec3& actual, const glm::vec3& expected, float tol = kTol) {
   EXPECT_NEAR(actual.x, expected.x, tol);
@@ -441,7 +445,7 @@ TEST(GltfLoader, PicksFirstCameraByDefaultAndNamedCameraOnRequest) {
   EXPECT_EQ(by_camera.camera.name, "cam_b");
   EXPECT_FLOAT_EQ(by_camera.camera.world[3].x, 5.0f);
   EXPECT_EQ(loadJson(json, GltfLoadOptions{"side"}).camera.name, "cam_b");  // by node name
-  EXPECT_SCENE_ERROR(loadJson(json, GltfLoadOptions{"top"}),
+  EXPECT_USAGE_ERROR(loadJson(json, GltfLoadOptions{"top"}),
                      "camera 'top' not found; available: 0 = camera 0 'cam_a' on node 1 "
                      "'front', 1 = camera 1 'cam_b' on node 2 'side'");
 }
@@ -455,7 +459,7 @@ TEST(GltfLoader, PicksACameraByIndex) {
     json.erase(json.find(name), std::string(name).size());
   EXPECT_FLOAT_EQ(loadJson(json, GltfLoadOptions{"1"}).camera.world[3].x, 5.0f);
   EXPECT_FLOAT_EQ(loadJson(json, GltfLoadOptions{"0"}).camera.world[3].z, 1.0f);
-  EXPECT_SCENE_ERROR(loadJson(json, GltfLoadOptions{"2"}),
+  EXPECT_USAGE_ERROR(loadJson(json, GltfLoadOptions{"2"}),
                      "camera '2' not found; available: 0 = camera 0 on node 1, 1 = camera 1 on "
                      "node 2");
 }
@@ -812,7 +816,8 @@ TEST(GltfLoader, RejectsSceneWithoutTriangles) {
 }
 
 TEST(GltfLoader, RejectsJsonSyntaxError) {
-  const std::string message = errorOf([] { loadJson("{\"asset\": {\"version\": \"2.0\"},"); });
+  const std::string message =
+      errorOf<SceneError>([] { loadJson("{\"asset\": {\"version\": \"2.0\"},"); });
   EXPECT_EQ(message.rfind("test.gltf: malformed glTF: ", 0), 0u) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
