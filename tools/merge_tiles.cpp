@@ -126,9 +126,15 @@ bool isFloatFormat(const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const char* usage =
+      "usage: merge_tiles OUT.exr TILE1.exr [TILE2.exr ...]\n"
+      "  pastes tiles written by 'gridrt --crop X0,Y0,X1,Y1 --crop-output window'\n";
+  if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+    std::cout << usage;
+    return 0;
+  }
   if (argc < 3) {
-    std::cerr << "usage: merge_tiles OUT.exr TILE1.exr [TILE2.exr ...]\n"
-                 "  pastes tiles written by 'gridrt --crop X0,Y0,X1,Y1 --crop-output window'\n";
+    std::cerr << usage;
     return 2;
   }
   const std::string out = argv[1];

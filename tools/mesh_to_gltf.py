@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Converts a PLY (ASCII or binary little-endian) or OBJ mesh to a binary glTF (.glb)
-that gridrt can render: one mesh node, float32 POSITION, uint32 indices, one default
-material, no camera (gridrt frames the scene itself).
+"""Converts a PLY (ASCII or binary little-endian) or OBJ mesh to glTF: binary (.glb) or
+JSON with the buffer embedded (.gltf), by the output's extension; one mesh node, float32
+POSITION, uint32 indices, one default material, no camera (gridrt frames the scene itself).
 
     tools/mesh_to_gltf.py bunny.ply bunny.glb
-    tools/mesh_to_gltf.py teapot.obj teapot.glb
+    tools/mesh_to_gltf.py teapot.obj teapot.gltf
 
 Polygons are triangulated as fans (v0, vi, vi+1). OBJ: only `v` and `f` lines are read
 (`f` corners may be v, v/vt, v//vn or v/vt/vn; negative indices count back from the
@@ -12,6 +12,7 @@ latest vertex). PLY: the `vertex` element's x, y, z and the `face` element's
 vertex_indices (or vertex_index) list; other elements and properties are skipped.
 Standard library only.
 """
+import base64
 import json
 import struct
 import sys
@@ -166,7 +167,8 @@ def pad4(blob, byte):
     return blob + byte * (-len(blob) % 4)
 
 
-def make_glb(positions, indices):
+def make_gltf(positions, indices):
+    """The glTF document and its binary buffer (positions, then uint32 indices)."""
     if not indices:
         raise MeshError("the mesh has no triangles")
     pos_blob = b"".join(struct.pack("<3f", *p) for p in positions)
@@ -197,11 +199,25 @@ def make_glb(positions, indices):
              "min": lo, "max": hi},
             {"bufferView": 1, "componentType": 5125, "count": len(indices), "type": "SCALAR"}],
     }
+    return doc, binary
+
+
+def make_glb(positions, indices):
+    """Binary glTF: the JSON chunk, then the buffer as the BIN chunk."""
+    doc, binary = make_gltf(positions, indices)
     text = pad4(json.dumps(doc, separators=(",", ":")).encode(), b" ")
     binary = pad4(binary, b"\0")
     total = 12 + 8 + len(text) + 8 + len(binary)
     return (struct.pack("<4sII", b"glTF", 2, total) + struct.pack("<I4s", len(text), b"JSON") +
             text + struct.pack("<I4s", len(binary), b"BIN\0") + binary)
+
+
+def make_json_gltf(positions, indices):
+    """glTF JSON with the buffer embedded as a base64 data URI (one file, like the .glb)."""
+    doc, binary = make_gltf(positions, indices)
+    doc["buffers"][0]["uri"] = ("data:application/octet-stream;base64," +
+                                base64.b64encode(binary).decode("ascii"))
+    return json.dumps(doc, separators=(",", ":")).encode()
 
 
 def convert(source, target):
@@ -214,15 +230,28 @@ def convert(source, target):
     else:
         raise MeshError("unknown mesh format (PLY needs the 'ply' magic, OBJ the .obj extension)")
     indices = fan_triangles(faces, len(positions))
-    glb = make_glb(positions, indices)
+    if target.lower().endswith(".gltf"):
+        out = make_json_gltf(positions, indices)
+    elif target.lower().endswith(".glb"):
+        out = make_glb(positions, indices)
+    else:
+        raise MeshError("the output must be .glb (binary glTF) or .gltf (glTF JSON), got '%s'"
+                        % target)
     with open(target, "wb") as f:
-        f.write(glb)
+        f.write(out)
     return len(positions), len(indices) // 3
 
 
+USAGE = "usage: mesh_to_gltf.py INPUT.{ply,obj} OUTPUT.{glb,gltf}"
+
+
 def main(argv):
+    if len(argv) == 2 and argv[1] in ("-h", "--help"):
+        print(USAGE)
+        print(__doc__)
+        return 0
     if len(argv) != 3:
-        print("usage: mesh_to_gltf.py INPUT.{ply,obj} OUTPUT.glb", file=sys.stderr)
+        print(USAGE, file=sys.stderr)
         return 2
     try:
         vertices, triangles = convert(argv[1], argv[2])

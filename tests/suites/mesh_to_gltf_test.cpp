@@ -88,3 +88,42 @@ TEST(MeshToGltf, OutOfRangeIndexIsAnErrorAndWritesNothing) {
 }
 
 }  // namespace
+
+namespace {
+
+// A .gltf target gets glTF JSON (its buffer a data URI), not GLB bytes under a JSON name.
+TEST(MeshToGltf, GltfTargetIsJsonWithTheSameTriangles) {
+  if (!havePython()) GTEST_SKIP() << "python3 is not installed";
+  const std::string in = tempPath("square_json.obj"), out = tempPath("square_json.gltf");
+  writeBytes(in, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  auto r = runCommand({"python3", sourcePath("tools/mesh_to_gltf.py"), in, out});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string text = gridrt::test::readWholeFile(out);
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.front(), '{');
+  EXPECT_NE(text.find("\"uri\":\"data:application/octet-stream;base64,"), std::string::npos);
+  expectSquare(gridrt::loadGltfFile(out));
+}
+
+TEST(MeshToGltf, OtherTargetsAreRefused) {
+  if (!havePython()) GTEST_SKIP() << "python3 is not installed";
+  const std::string in = tempPath("square_txt.obj");
+  writeBytes(in, "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n");
+  auto r = runCommand({"python3", sourcePath("tools/mesh_to_gltf.py"), in, tempPath("x.txt")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("must be .glb"), std::string::npos) << r.err;
+}
+
+// Asking a tool for help is not a mistake: exit 0, the usage on standard output.
+TEST(Tools, HelpExitsZero) {
+  if (!havePython()) GTEST_SKIP() << "python3 is not installed";
+  for (const std::vector<std::string>& argv :
+       {std::vector<std::string>{"python3", sourcePath("tools/mesh_to_gltf.py"), "--help"},
+        std::vector<std::string>{GRIDRT_MERGE_TILES, "--help"}}) {
+    auto r = runCommand(argv);
+    EXPECT_EQ(r.exit_code, 0) << argv[1] << ": " << r.err;
+    EXPECT_NE(r.out.find("usage: "), std::string::npos) << r.out;
+  }
+}
+
+}  // namespace
