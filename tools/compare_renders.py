@@ -10,13 +10,20 @@ The functions are also imported by tools/accuracy_sweep.py. Run with .venv/bin/p
 import argparse
 import json
 import math
+import os
 import sys
 
 import numpy as np
 import OpenImageIO as oiio
 
 
+# Extensions whose pixels are 8-bit sRGB codes; .exr/.hdr/.tif hold linear values.
+ENCODED = (".png", ".jpg", ".jpeg")
+
+
 def _read(path):
+    if not os.path.isfile(path):
+        raise RuntimeError(f"{path}: no such file")
     buf = oiio.ImageBuf(path)
     if buf.has_error:
         raise RuntimeError(f"{path}: {buf.geterror()}")
@@ -27,6 +34,9 @@ def image_error(path_a, path_b, display=False):
     """RMSE, PSNR (dB, peak 1) and max abs error over all channels of A against B.
     display=True clamps both to [0, 1] first: the error a viewer of the PNG would see,
     not dominated by a few very bright pixels near a light."""
+    if path_a.lower().endswith(ENCODED) != path_b.lower().endswith(ENCODED):
+        raise RuntimeError(f"{path_a} and {path_b}: one holds sRGB codes, the other linear "
+                           "values; compare two PNGs or two EXRs")
     a, b = _read(path_a), _read(path_b)
     if (a.spec().width, a.spec().height) != (b.spec().width, b.spec().height):
         raise RuntimeError(f"{path_a} and {path_b} differ in size")
@@ -69,7 +79,9 @@ def main(argv=None):
         print(f"compare_renders: {e}", file=sys.stderr)
         return 1
     if args.json:
-        print(json.dumps(result))
+        # Strict JSON: an exact match has no finite PSNR, written as null (not Infinity).
+        print(json.dumps({k: (v if math.isfinite(v) else None) for k, v in result.items()},
+                         allow_nan=False))
     else:
         for k, v in result.items():
             print(f"{k:18s} {v:.6g}")

@@ -85,6 +85,8 @@ def main():
     parser.add_argument("--kind", choices=KINDS, help="what the AOV holds (default: from the name)")
     parser.add_argument("--max", type=float, help="tests/listlen: value at the top of the colour map")
     args = parser.parse_args()
+    if not os.path.isfile(args.input):
+        sys.exit("heatmap: %s: no such file" % args.input)
     kind = args.kind or guess_kind(args.input)
     values = read_single_channel(args.input)
     if kind == "pe":
