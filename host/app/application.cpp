@@ -284,6 +284,10 @@ int runApplication(const Options& given) {
   }
   // Fail on bad output paths and absurd sizes before spending time on anything.
   validateOutputPath(given.output);
+  // A name the program chose replaces nothing the user did not ask it to.
+  if (!given.output_named && !given.force && std::filesystem::exists(given.output))
+    throw UsageError("'" + given.output + "' exists: replace it with --force, or name the " +
+                     "output with -o");
   for (const auto& aov : given.aovs) validateOutputPath(aov.second, OutputKind::Aov);
   validateStatsPath(given.stats_json);
   checkImageFitsHost(given);

@@ -177,8 +177,10 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
       "(uniform grid, one processing element per non-empty voxel, two-phase reduction).\n"
       "Without SCENE it renders the built-in default scene.");
   app.add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb)");
-  app.add_option("-o,--output", o.output, "output image: .png/.jpg (sRGB) or .exr (linear)")
-      ->capture_default_str();
+  app.add_option("-o,--output", o.output,
+                 "output image: .png/.jpg (sRGB) or .exr (linear); default SCENE.png (the "
+                 "scene's name, here), gridrt.png for the built-in scene");
+  app.add_flag("--force", o.force, "without -o, replace an existing SCENE.png");
   app.add_option("--width", o.width, "image width in pixels")
       ->capture_default_str()
       ->check(integerIn(1, 65536));
@@ -329,6 +331,9 @@ std::optional<Options> parseCommandLine(int argc, const char* const* argv) {
     throw UsageError(what + " (see gridrt --help)");
   }
   o.size_given = app.count("--width") > 0 || app.count("--height") > 0;
+  o.output_named = app.count("--output") > 0;
+  if (!o.output_named && !o.scene.empty())
+    o.output = std::filesystem::path(o.scene).stem().string() + ".png";
   for (const CLI::Option* option : app.get_options())
     if (option->count() > 0) raw.given.insert(option->get_name());
   finish(o, raw);

@@ -16,8 +16,13 @@ namespace gridrt {
 enum class AccelKind { GridRt, Dda, Brute, Reference };
 
 struct Options {
-  std::string scene;                  // glTF/glb path; empty = the built-in default scene
-  std::string output = "gridrt.png";  // PNG/JPEG (sRGB) or EXR (linear) by extension
+  std::string scene;  // glTF/glb path; empty = the built-in default scene
+  // PNG/JPEG (sRGB) or EXR (linear) by extension. Without -o: the scene's name with .png in
+  // the current folder (gridrt.png for the built-in scene), never replacing a file
+  // unless --force.
+  std::string output = "gridrt.png";
+  bool output_named = false;  // -o given: the user asked for that file, existing or not
+  bool force = false;         // --force: a derived output may replace an existing file
   int width = 640;
   int height = 480;
   // --width or --height given: the image keeps that size. Otherwise a scene camera's

@@ -851,6 +851,7 @@ class SceneBuilder {
       normals.emplace(vertex_count);
       for (size_t i = 0; i < vertex_count; ++i) (*normals)[i] = normal_data.vec3(i);
     }
+    vertex_colours_ignored_ = vertex_colours_ignored_ || attribute(prim, "COLOR_0") >= 0;
     applyMorphTargets(prim, morph_weights, "POSITION", positions, where);
     if (normals) applyMorphTargets(prim, morph_weights, "NORMAL", *normals, where);
     const std::vector<uint32_t> indices = triangleIndices(prim, vertex_count, where);
@@ -975,6 +976,7 @@ class SceneBuilder {
   }
 
   void summariseWarnings() {
+    if (vertex_colours_ignored_) scene_.warnings.push_back("vertex colours (COLOR_0) are ignored");
     if (scene_.skipped_primitives > 0)
       scene_.warnings.push_back(std::to_string(scene_.skipped_primitives) +
                                 " primitive(s) skipped (points, lines, strips, fans or no "
@@ -994,6 +996,7 @@ class SceneBuilder {
   std::vector<bool> has_normals_;  // per triangle: from a primitive with NORMAL
   std::vector<CameraNode> camera_nodes_;
   int default_material_ = -1;
+  bool vertex_colours_ignored_ = false;  // some primitive has COLOR_0
   // Per node: its world matrix, once the traversal has reached it.
   std::vector<std::optional<glm::dmat4>> world_of_node_;
   // The file declares KHR_mesh_quantization: integer POSITION and NORMAL are allowed.

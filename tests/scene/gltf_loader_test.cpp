@@ -759,6 +759,19 @@ TEST(GltfLoader, SkinnedMeshFollowsItsJoints) {
   expectNear(scene.positions[2], {0, 0.5f, 1.5f});
 }
 
+TEST(GltfLoader, WarnsThatVertexColoursAreIgnored) {
+  GltfBuilder b;
+  const int pos = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const int colour = b.vec3({1, 0, 0, 0, 1, 0, 0, 0, 1});
+  const std::string prim = "{\"attributes\":{\"POSITION\":" + std::to_string(pos) +
+                           ",\"COLOR_0\":" + std::to_string(colour) + "}}";
+  const Scene scene = loadJson(b.json(singleMesh(prim)));
+  ASSERT_EQ(scene.triangleCount(), 1u);
+  EXPECT_NE(std::find(scene.warnings.begin(), scene.warnings.end(),
+                      "vertex colours (COLOR_0) are ignored"),
+            scene.warnings.end());
+}
+
 TEST(GltfLoader, RejectsSkinJointOutOfRange) {
   GltfBuilder b;
   const int pos = b.vec3({0, 0, 0, 1, 0, 0, 1, 1, 0});
