@@ -95,6 +95,29 @@ TEST(Tiles, UnevenTilesWithSeveralSamplesMergeBitForBit) {
                                {"--spp", "3"});
 }
 
+// Adaptive AA refines a pixel where a 4-neighbour's centre differs: a pixel on a tile's
+// edge must see its neighbours in the next tile, as it does in the full render. Tiles one
+// row and one column wide (every pixel on an edge) and a seam through the scene's edges.
+TEST(Tiles, AdaptiveAntiAliasingTilesMergeBitForBit) {
+  expectTilesMergeToFullRender("adaptive",
+                               {{0, 0, 31, 23},
+                                {31, 0, 64, 23},
+                                {0, 23, 31, 24},
+                                {31, 23, 64, 24},
+                                {0, 24, 30, 48},
+                                {30, 24, 31, 48},
+                                {31, 24, 64, 48}},
+                               {"--aa", "adaptive", "--aa-samples", "3"});
+}
+
+// --spp beside --aa adaptive (which takes its samples from --aa-samples), a lower
+// threshold (more pixels refined) and the even tiles whose seam the scene's edges cross.
+TEST(Tiles, AdaptiveAntiAliasingWithSamplesPerPixelMergeBitForBit) {
+  expectTilesMergeToFullRender("adaptive_spp",
+                               {{0, 0, 32, 24}, {32, 0, 64, 24}, {0, 24, 32, 48}, {32, 24, 64, 48}},
+                               {"--aa", "adaptive", "--spp", "4", "--aa-threshold", "0.02"});
+}
+
 TEST(Tiles, WindowFileCarriesItsOffsetInTheDataWindow) {
   const std::string tile = tempPath("offset.exr");
   render(tile, {"--crop", "10,5,30,25", "--crop-output", "window"});
