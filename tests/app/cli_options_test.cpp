@@ -1,7 +1,9 @@
 // The rendering options reach the renderer: each of --aa, --intersector, --pe-interrupt,
 // --camera, --grid-density, --min-path-weight, --ambient and --stats, given on the command
 // line, changes what the program does in the way its help text says (the image, the AOVs,
-// the rays traced or the grid in --stats-json), against the same render without it.
+// the rays traced or the grid in --stats-json), against the same render without it. And
+// bad values of --look-at, --fov and --stats-json end the run with one line and the
+// documented exit code (2 for usage, 1 otherwise).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -200,6 +202,49 @@ TEST_F(CliOptions, CameraPicksTheNamedCamera) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("camera 'no such camera' not found"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("'side camera'"), std::string::npos) << "the cameras are listed: " << r.err;
+}
+
+}  // namespace
+
+namespace {
+
+// One line on stderr starting with "gridrt: ", holding `text`.
+void expectOneErrorLine(const CommandResult& r, const std::string& text) {
+  EXPECT_EQ(r.err.rfind("gridrt: ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+  EXPECT_NE(r.err.find(text), std::string::npos) << r.err;
+}
+
+TEST(BadInput, MalformedLookAtIsAUsageError) {
+  for (const char* bad : {"1,2:3,4,5", "1,2,3", "1,2,3:a,b,c", "1,2,3:4,5,nan"}) {
+    CommandResult r = runCommand({gridrtBinary(), "--look-at", bad, "-o", tempPath("la.png")});
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    expectOneErrorLine(r, "--look-at");
+  }
+}
+
+TEST(BadInput, EyeEqualToTargetIsAUsageError) {
+  CommandResult r =
+      runCommand({gridrtBinary(), "--look-at", "1,2,3:1,2,3", "-o", tempPath("eye.png")});
+  EXPECT_EQ(r.exit_code, 2);
+  expectOneErrorLine(r, "eye and target are the same point");
+}
+
+TEST(BadInput, FieldOfViewOutsideItsRangeIsAUsageError) {
+  for (const char* bad : {"0", "0.001", "179.5", "200", "-10"}) {
+    CommandResult r = runCommand({gridrtBinary(), "--fov", bad, "-o", tempPath("fov.png")});
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    expectOneErrorLine(r, "--fov");
+  }
+}
+
+TEST(BadInput, UnwritableStatisticsFileFailsTheRun) {
+  if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
+  const std::string json = tempPath("no_such_folder") + "/stats.json";
+  CommandResult r = runCommand({gridrtBinary(), "-q", "--width", "8", "--height", "8", "-o",
+                                tempPath("stats.png"), "--stats-json", json});
+  EXPECT_EQ(r.exit_code, 1);
+  expectOneErrorLine(r, "cannot write '" + json + "'");
 }
 
 }  // namespace
