@@ -1,9 +1,10 @@
 // Whether the emulated interrupt saves work depends on the order work-groups run in: a PE
 // skips a ray only if a PE before it in the ray's list has already stored a hit. ctest runs
-// this test on one compute unit (POCL_MAX_PTHREAD_COUNT=1), where PoCL runs the work-groups one
-// after another in task order, which is PE order: rays going up through a grid (PE index
-// grows with z) meet their PEs in that order, so every PE after a ray's hit skips it. The
-// hits never depend on the order (conformance_test checks them on all cores).
+// this test on one compute unit (POCL_MAX_PTHREAD_COUNT=1), whose one thread runs the
+// work-groups one after another in task order, which is PE order: rays going up through a
+// grid (PE index grows with z) mostly meet their PEs in that order, so PEs after a ray's
+// hit skip it. The hits never depend on the order (conformance_test checks them on all
+// cores).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
