@@ -12,8 +12,8 @@
  * the host picks it.
  *
  * INTERRUPT emulates the paper's interrupt chain as gridrt_lists.cl does: a lane is skipped
- * when first_hit_key (per bundle ray, the int bits of the smallest t_enter of a PE with a
- * hit) is below its own t_enter. */
+ * when first_hit_key (per bundle ray, the int bits of the smallest t of a hit) is below its
+ * own t_enter. */
 #pragma OPENCL FP_CONTRACT OFF
 #include "gridrt_types.h"
 #include "pe_closest16.h"
@@ -90,7 +90,7 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
                     &best_u, &best_v, &best_prim, cull_planes, cull_stride, packet_box,
                     cull.enabled != 0.0f, &seg, seg_planes, seg_stride, &m.tests);
     m.hit = gr_store_packet_hits(best_t, best_prim, best_u, best_v, results, (size_t)lanes, out,
-                                 interrupt, first_hit_key, (int16)first + GR_LANE_INDEX16, t_enter);
+                                 interrupt, first_hit_key, (int16)first + GR_LANE_INDEX16);
   }
   m.pierced = gr_lane_bits16(pierced);
   m.skipped = gr_lane_bits16(skipped);

@@ -11,9 +11,9 @@
  * holds it) runs on the host.
  *
  * INTERRUPT emulates the paper's interrupt chain: a PE skips a ray once a PE earlier in
- * that ray's list has reported a hit. "Earlier" is a smaller entry distance (a list is
- * ordered by it); first_hit_key holds the smallest t_enter of a PE with a hit, as the
- * int bits of a non-negative float, which order like the floats (atomic_min on ints). */
+ * that ray's list has reported a hit before the PE's entry distance (a list is ordered by
+ * it); first_hit_key holds the smallest t of a hit, as the int bits of a non-negative
+ * float, which order like the floats (atomic_min on ints). */
 #pragma OPENCL FP_CONTRACT OFF
 #include "gridrt_types.h"
 #include "pe_closest16.h"
@@ -80,7 +80,7 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
                     (__global const float*)0, 0, (float4)0.0f, 0, &seg, seg_planes, seg_stride,
                     &m.tests);
     m.hit = gr_store_packet_hits(best_t, best_prim, best_u, best_v, results, all_lanes, out,
-                                 interrupt, first_hit_key, ray16, t_enter);
+                                 interrupt, first_hit_key, ray16);
   }
   if (m.hit | m.skipped) vstore16(ray16, 0, out_ray + out);
   masks[packet_index] = m;

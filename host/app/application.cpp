@@ -200,7 +200,7 @@ struct FrameTimings {
 FrameTimings renderFrames(const Options& o, Renderer& renderer, Intersector& intersector,
                           Frame& frame) {
   FrameTimings t;
-  ProgressBar bar(progressWanted(o.quiet));
+  ProgressBar bar(progressWanted(o.quiet), progressDelaySeconds());
   const int frames = o.repeat + 1;
   for (int f = 0; f < frames; ++f) {
     IntersectCounters before = intersector.counters();

@@ -26,9 +26,20 @@ std::string formatSeconds(double s) {
 }  // namespace
 
 bool progressWanted(bool quiet) {
-  if (quiet || !::isatty(STDERR_FILENO)) return false;
-  const char* term = std::getenv("TERM");
+  return progressWanted(quiet, ::isatty(STDERR_FILENO), std::getenv("TERM"));
+}
+
+bool progressWanted(bool quiet, bool terminal, const char* term) {
+  if (quiet || !terminal) return false;
   return !(term && std::strcmp(term, "dumb") == 0);  // no '\r' redraw on dumb terminals
+}
+
+double progressDelaySeconds() {
+  const char* text = std::getenv("GRIDRT_PROGRESS_DELAY");
+  if (!text || !*text) return kProgressDelayS;
+  char* end = nullptr;
+  const double s = std::strtod(text, &end);
+  return *end == '\0' && s >= 0.0 ? s : kProgressDelayS;
 }
 
 std::string formatProgressLine(double fraction, double elapsed_s, double remaining_s) {

@@ -12,10 +12,17 @@ namespace gridrt {
 
 // Whether a progress bar belongs on stderr: a terminal (not a pipe or a file), not quiet.
 bool progressWanted(bool quiet);
+// The same decision for a given stderr (terminal or not) and $TERM (null when unset).
+bool progressWanted(bool quiet, bool terminal, const char* term);
+
+// How long a render runs before the bar appears: $GRIDRT_PROGRESS_DELAY seconds (a number
+// >= 0; tests set 0 to see the bar on a render of any length), else kProgressDelayS.
+constexpr double kProgressDelayS = 0.5;
+double progressDelaySeconds();
 
 class ProgressBar {
  public:
-  explicit ProgressBar(bool enabled, double delay_s = 0.5);
+  explicit ProgressBar(bool enabled, double delay_s = kProgressDelayS);
   ~ProgressBar() { finish(); }
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;

@@ -70,6 +70,25 @@ size_t nextSlot(std::vector<A>& a, std::vector<B>& b, size_t& count) {
   return count++;
 }
 
+// `w` with one more pixel on each side, inside the width x height image.
+PixelWindow grownInside(const PixelWindow& w, int width, int height) {
+  return PixelWindow{std::max(0, w.x0 - 1), std::max(0, w.y0 - 1), std::min(width, w.x1 + 1),
+                     std::min(height, w.y1 + 1)};
+}
+
+// Keeps the pixels of `inner` (inside `outer`) of an image of `outer`'s pixels with
+// `channels` floats each, in place, row by row.
+void keepWindow(std::vector<float>& image, const PixelWindow& outer, const PixelWindow& inner,
+                int channels) {
+  if (image.empty()) return;
+  const size_t row = size_t(inner.width()) * channels;
+  for (int y = inner.y0; y < inner.y1; ++y) {
+    const size_t from = (size_t(y - outer.y0) * outer.width() + (inner.x0 - outer.x0)) * channels;
+    std::copy_n(image.begin() + from, row, image.begin() + size_t(y - inner.y0) * row);
+  }
+  image.resize(row * inner.height());
+}
+
 }  // namespace
 
 Renderer::Renderer(const Scene& scene, const Camera& camera, Intersector& intersector,
@@ -78,7 +97,10 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, Intersector& inters
       camera_(camera),
       intersector_(intersector),
       settings_(settings),
-      film_window_(settings.crop.orWholeImage(settings.width, settings.height)) {
+      output_window_(settings.crop.orWholeImage(settings.width, settings.height)),
+      film_window_(settings.adaptive_aa
+                       ? grownInside(output_window_, settings.width, settings.height)
+                       : output_window_) {
   geometric_normals_.resize(scene.triangleCount());
   for (size_t t = 0; t < scene.triangleCount(); ++t) {
     glm::vec3 n = glm::cross(scene.positions[3 * t + 1] - scene.positions[3 * t],
@@ -195,13 +217,16 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     // Adaptive supersampling: the pixel centres first; then extra jittered samples only
     // where a pixel differs from a 4-neighbour by more than the threshold.
     renderInBands(frame, win, 1, 1.0f, progress);
+    // Only the output window's pixels are refined; the ring around it (film_window_) holds
+    // the centres of their neighbours outside it.
     std::vector<int> refine;
     auto differs = [&](int p, int q) {
       glm::vec3 d = glm::abs(radiance_[p] - radiance_[q]);
       return std::max({d.x, d.y, d.z}) > settings_.aa_threshold;
     };
-    for (int y = 0; y < fh; ++y)
-      for (int x = 0, p = y * fw; x < fw; ++x, ++p)
+    const PixelWindow& out = output_window_;
+    for (int y = out.y0 - win.y0; y < out.y1 - win.y0; ++y)
+      for (int x = out.x0 - win.x0, p = y * fw + x; x < out.x1 - win.x0; ++x, ++p)
         if ((x > 0 && differs(p, p - 1)) || (x + 1 < fw && differs(p, p + 1)) ||
             (y > 0 && differs(p, p - fw)) || (y + 1 < fh && differs(p, p + fw)))
           refine.push_back(p);
@@ -226,6 +251,16 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
 #pragma omp parallel for schedule(static)
   for (long long p = 0; p < (long long)pixels; ++p)
     for (int c = 0; c < 3; ++c) frame.film.rgb[3 * p + c] = radiance_[p][c];
+  if (output_window_ != win) {  // the ring of adaptive AA's neighbours is not output
+    const PixelWindow& out = output_window_;
+    keepWindow(frame.film.rgb, win, out, 3);
+    frame.film.width = out.width();
+    frame.film.height = out.height();
+    PrimaryAovs& a = frame.aovs;
+    for (std::vector<float>* one : {&a.depth, &a.primid, &a.tests, &a.pe, &a.list_length})
+      keepWindow(*one, win, out, 1);
+    keepWindow(a.normal, win, out, 3);
+  }
   frame.times.frame_ms = frame_clock.ms();
 }
 

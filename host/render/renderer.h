@@ -219,8 +219,12 @@ class Renderer {
   std::vector<size_t> light_ray_index_;  // ... and their indices in the shadow rays
   std::vector<Spawned> spawned_;
   std::vector<size_t> chunk_offsets_;  // where each chunk's output starts (concatenateChunks)
-  // The pixels the film holds (the crop window, or the whole image) and, per rendered
-  // pixel, its film index.
+  // The pixels the film holds (the crop window, or the whole image); the pixels traced,
+  // radiance_ and the AOVs while rendering: the film's, and with adaptive AA one pixel
+  // more on each side inside the image, since a pixel's refinement reads the centres of
+  // its four neighbours (so a tile refines as the full render does); and, per rendered
+  // pixel, its index in film_window_.
+  const PixelWindow output_window_;
   const PixelWindow film_window_;
   std::vector<int> window_pixels_;
   // The band window_pixels_ holds (renderInBands keeps it from frame to frame), and the

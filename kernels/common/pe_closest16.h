@@ -206,11 +206,13 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
 /* Phase 1's output for one packet, for both PE kernels: where a lane hits, the packet's
  * t, prim, u and v planes go whole to its lanes [out, out + 16) of the result planes
  * (GR_RESULT_*, each lanes_total long). With interrupt, each hitting lane lowers
- * first_hit_key[key_of lane] to its t_enter (as int bits). Returns the hit mask. */
+ * first_hit_key[key_of lane] to its hit's t (as int bits): a later PE is skipped only when
+ * it starts beyond a hit, so one starting exactly at it (a hit on the shared boundary) still
+ * runs and an exact tie there goes to the lower triangle index, whichever PE runs first.
+ * Returns the hit mask. */
 inline __attribute__((always_inline)) int gr_store_packet_hits(
     float16 best_t, int16 best_prim, float16 best_u, float16 best_v, __global float* results,
-    size_t lanes_total, int out, int interrupt, __global int* first_hit_key, int16 key_of,
-    float16 t_enter) {
+    size_t lanes_total, int out, int interrupt, __global int* first_hit_key, int16 key_of) {
   const int hit = gr_lane_bits16(best_prim >= 0);
   if (!hit) return 0;
   vstore16(best_t, 0, results + GR_RESULT_T * lanes_total + out);
@@ -219,7 +221,7 @@ inline __attribute__((always_inline)) int gr_store_packet_hits(
   vstore16(best_v, 0, results + GR_RESULT_V * lanes_total + out);
   if (interrupt) {
     int keys[16], index[16];
-    vstore16(as_int16(t_enter), 0, keys);
+    vstore16(as_int16(best_t), 0, keys);
     vstore16(key_of, 0, index);
     for (int k = 0; k < 16; ++k)
       if (hit & (1 << k)) atomic_min(&first_hit_key[index[k]], keys[k]);

@@ -3,11 +3,11 @@
 // split by ray kind in --stats-json.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +35,26 @@ gridrt::Options parse(std::vector<std::string> words) {
 
 bool haveDevice() { return runCommand({gridrtBinary(), "--list-devices"}).exit_code == 0; }
 
+// Sets an environment variable for this process and the commands it runs, until the end of
+// the scope.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    setenv(name, value, 1);
+  }
+  ~ScopedEnv() {
+    if (old_)
+      setenv(name_, old_->c_str(), 1);
+    else
+      unsetenv(name_);
+  }
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
 // --- progress -------------------------------------------------------------------------------
 
 TEST(Progress, LineShowsBarPercentElapsedAndRemaining) {
@@ -50,32 +70,70 @@ TEST(Progress, FractionIsClampedAndRemainingNeverNegative) {
   EXPECT_NE(line.find("about 0.0 s left"), std::string::npos) << line;
 }
 
+// With no delay the bar would be drawn at the first update of any render: off a terminal
+// there is still none, only the closing summary.
 TEST(Progress, NothingButTheSummaryWhenStderrIsNotATerminal) {
   if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
-  CommandResult r = runCommand({gridrtBinary(), "--width", "64", "--height", "48", "--repeat", "8",
-                                "-o", tempPath("quiet_progress.png")});
+  ScopedEnv no_delay("GRIDRT_PROGRESS_DELAY", "0");
+  CommandResult r = runCommand(
+      {gridrtBinary(), "--width", "64", "--height", "48", "-o", tempPath("quiet_progress.png")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("elapsed"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("Mrays/s"), std::string::npos) << "the closing summary is kept: " << r.err;
 }
 
-// util-linux `script` runs the command on a pseudo-terminal, where the bar must appear.
-TEST(Progress, BarIsDrawnOnATerminalForALongRender) {
+bool haveScript() { return std::system("command -v script >/dev/null 2>&1") == 0; }
+
+// util-linux `script` runs the command on a pseudo-terminal, where the bar must appear
+// (with no delay, whatever the render's length) and be erased before the summary.
+TEST(Progress, BarIsDrawnOnATerminal) {
   if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
-  if (std::system("command -v script >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "util-linux 'script' is not installed (needed for a pseudo-terminal)";
-  // Long enough (about 2 s here) to pass the bar's 0.5 s delay on any machine.
+  if (!haveScript()) GTEST_SKIP() << "util-linux 'script' is not installed (a pseudo-terminal)";
+  ScopedEnv no_delay("GRIDRT_PROGRESS_DELAY", "0");
   std::string command =
-      gridrtBinary() + " --width 320 --height 240 --repeat 30 -o " + tempPath("tty_progress.png");
+      gridrtBinary() + " --width 64 --height 48 -o " + tempPath("tty_progress.png");
   CommandResult r = runCommand({"script", "-qec", command, "/dev/null"});
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("elapsed, about"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find('\r'), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\r\033[K"), std::string::npos) << "the bar is erased: " << r.out;
   EXPECT_NE(r.out.find("Mrays/s"), std::string::npos) << r.out;
 }
 
-TEST(Progress, QuietSuppressesTheBarOnATerminalToo) { EXPECT_FALSE(gridrt::progressWanted(true)); }
+TEST(Progress, QuietSuppressesTheBarOnATerminalToo) {
+  if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
+  if (!haveScript()) GTEST_SKIP() << "util-linux 'script' is not installed (a pseudo-terminal)";
+  ScopedEnv no_delay("GRIDRT_PROGRESS_DELAY", "0");
+  std::string command =
+      gridrtBinary() + " -q --width 64 --height 48 -o " + tempPath("tty_quiet.png");
+  CommandResult r = runCommand({"script", "-qec", command, "/dev/null"});
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(r.out.find("elapsed"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find('\r'), std::string::npos) << r.out;
+}
+
+TEST(Progress, WantedOnlyOnATerminalThatRedrawsAndWithoutQuiet) {
+  EXPECT_TRUE(gridrt::progressWanted(false, true, "xterm-256color"));
+  EXPECT_TRUE(gridrt::progressWanted(false, true, nullptr));
+  EXPECT_FALSE(gridrt::progressWanted(true, true, "xterm-256color"));
+  EXPECT_FALSE(gridrt::progressWanted(false, false, "xterm-256color"));
+  EXPECT_FALSE(gridrt::progressWanted(false, true, "dumb"));
+}
+
+TEST(Progress, DelayComesFromTheEnvironmentWhenItIsANumber) {
+  {
+    ScopedEnv delay("GRIDRT_PROGRESS_DELAY", "0");
+    EXPECT_EQ(gridrt::progressDelaySeconds(), 0.0);
+  }
+  {
+    ScopedEnv delay("GRIDRT_PROGRESS_DELAY", "2.5");
+    EXPECT_EQ(gridrt::progressDelaySeconds(), 2.5);
+  }
+  for (const char* bad : {"", "soon", "-1", "1s"}) {
+    ScopedEnv delay("GRIDRT_PROGRESS_DELAY", bad);
+    EXPECT_EQ(gridrt::progressDelaySeconds(), gridrt::kProgressDelayS) << bad;
+  }
+}
 
 // --- --crop ---------------------------------------------------------------------------------
 
@@ -112,14 +170,12 @@ TEST(CropOption, BadWindowOnTheCommandLineExitsWithUsageCode) {
 
 // --- resources and devices ------------------------------------------------------------------
 
-TEST(Resources, HugeImageIsRefusedAtOnceWithOneLine) {
+// Refused before anything is loaded: a scene that does not exist is never opened.
+TEST(Resources, HugeImageIsRefusedBeforeTheSceneIsLoadedWithOneLine) {
   const std::string out = tempPath("huge.png");
-  auto start = std::chrono::steady_clock::now();
-  CommandResult r =
-      runCommand({gridrtBinary(), "--width", "65536", "--height", "65536", "-o", out});
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  CommandResult r = runCommand({gridrtBinary(), tempPath("no_such_scene.glb"), "--width", "65536",
+                                "--height", "65536", "-o", out});
   EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_LT(seconds, 10.0);
   EXPECT_EQ(r.err.rfind("gridrt: image 65536x65536", 0), 0u) << r.err;
   EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
   EXPECT_FALSE(std::filesystem::exists(out));
@@ -167,9 +223,8 @@ TEST(Statistics, TracingTimeSplitsByRayKind) {
   EXPECT_GT(t["primary_ms"].get<double>(), 0.0);
   EXPECT_GT(t["secondary_ms"].get<double>(), 0.0);
   EXPECT_GT(t["shadow_ms"].get<double>(), 0.0);
-  EXPECT_NEAR(t["primary_ms"].get<double>() + t["secondary_ms"].get<double>() +
-                  t["shadow_ms"].get<double>(),
-              all["intersect_ms"].get<double>(), 1e-9);
+  // Tracing is part of the frame, timed by the frame's own clock.
+  EXPECT_LE(all["intersect_ms"].get<double>(), all["frame_ms"].get<double>());
   const double secondary_rays =
       all["rays"]["reflection"].get<double>() + all["rays"]["refraction"].get<double>();
   EXPECT_NEAR(t["secondary_ns_per_ray"].get<double>(),

@@ -158,7 +158,38 @@ void expectWellFormed(const UniformGrid& g, const std::vector<GrTriangle>& tris)
     }
 }
 
-// Brute force: every voxel against every triangle; the grid must list exactly those.
+// Whether the triangle a, b, c meets the closed box [lo, hi], decided independently of the
+// builder's separating-axis test: the triangle clipped by the box's six planes in turn
+// (Sutherland-Hodgman, in double; a clipped point takes the plane's coordinate exactly)
+// leaves something.
+bool clippedTriangleIsLeft(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& a,
+                           const glm::dvec3& b, const glm::dvec3& c) {
+  std::vector<glm::dvec3> polygon{a, b, c}, next;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const double plane = side == 0 ? lo[axis] : hi[axis];
+      auto inside = [&](const glm::dvec3& p) {
+        return side == 0 ? p[axis] >= plane : p[axis] <= plane;
+      };
+      next.clear();
+      for (size_t k = 0; k < polygon.size(); ++k) {
+        const glm::dvec3 &p = polygon[k], &q = polygon[(k + 1) % polygon.size()];
+        if (inside(p)) next.push_back(p);
+        if (inside(p) != inside(q)) {
+          const double s = (plane - p[axis]) / (q[axis] - p[axis]);
+          glm::dvec3 x = p + s * (q - p);
+          x[axis] = plane;
+          next.push_back(x);
+        }
+      }
+      polygon.swap(next);
+      if (polygon.empty()) return false;
+    }
+  return true;
+}
+
+// Brute force: every voxel against every triangle, by clipping; the grid must list exactly
+// those.
 void expectExactLists(const UniformGrid& g, const std::vector<GrTriangle>& tris) {
   std::vector<std::array<glm::dvec3, 3>> verts(tris.size());
   for (size_t t = 0; t < tris.size(); ++t) verticesOf(tris[t], verts[t].data());
@@ -171,7 +202,7 @@ void expectExactLists(const UniformGrid& g, const std::vector<GrTriangle>& tris)
         grownVoxelBox(g, x, y, z, lo, hi);
         std::vector<int> want;
         for (size_t t = 0; t < tris.size(); ++t)
-          if (triangleOverlapsBox(lo, hi, verts[t][0], verts[t][1], verts[t][2]))
+          if (clippedTriangleIsLeft(lo, hi, verts[t][0], verts[t][1], verts[t][2]))
             want.push_back(int(t));
         size_t v = size_t(x) + size_t(g.info.nx) * (y + size_t(g.info.ny) * z);
         std::vector<int> got = listedIn(g, v);

@@ -95,6 +95,58 @@ TEST(Tiles, UnevenTilesWithSeveralSamplesMergeBitForBit) {
                                {"--spp", "3"});
 }
 
+// Adaptive AA refines a pixel where a 4-neighbour's centre differs: a pixel on a tile's
+// edge must see its neighbours in the next tile, as it does in the full render. Tiles one
+// row and one column wide (every pixel on an edge) and a seam through the scene's edges.
+TEST(Tiles, AdaptiveAntiAliasingTilesMergeBitForBit) {
+  expectTilesMergeToFullRender("adaptive",
+                               {{0, 0, 31, 23},
+                                {31, 0, 64, 23},
+                                {0, 23, 31, 24},
+                                {31, 23, 64, 24},
+                                {0, 24, 30, 48},
+                                {30, 24, 31, 48},
+                                {31, 24, 64, 48}},
+                               {"--aa", "adaptive", "--aa-samples", "3"});
+}
+
+// --spp beside --aa adaptive (which takes its samples from --aa-samples) on the even tiles
+// whose seam the scene's edges cross: before the renderer traced the ring of neighbours
+// around a window, 18 pixels on this seam differed from the full render.
+TEST(Tiles, AdaptiveAntiAliasingWithSamplesPerPixelMergeBitForBit) {
+  expectTilesMergeToFullRender("adaptive_spp",
+                               {{0, 0, 32, 24}, {32, 0, 64, 24}, {0, 24, 32, 48}, {32, 24, 64, 48}},
+                               {"--aa", "adaptive", "--spp", "4"});
+}
+
+// The AOVs of an adaptive tile are the full render's in the window (the ring of
+// neighbours the renderer traces around it is cut from them as from the image).
+TEST(Tiles, AdaptiveAntiAliasingTileAovsAreTheFullRendersInTheWindow) {
+  const Rect tile{10, 5, 41, 30};
+  const std::string full = tempPath("aov_full.exr"), full_depth = tempPath("aov_full_depth.exr"),
+                    full_normal = tempPath("aov_full_normal.exr");
+  const std::string part = tempPath("aov_tile.exr"), part_depth = tempPath("aov_tile_depth.exr"),
+                    part_normal = tempPath("aov_tile_normal.exr");
+  render(full,
+         {"--aa", "adaptive", "--aov", "depth=" + full_depth, "--aov", "normal=" + full_normal});
+  render(part, {"--aa", "adaptive", "--crop", tile.text(), "--crop-output", "window", "--aov",
+                "depth=" + part_depth, "--aov", "normal=" + part_normal});
+  for (const auto& [whole, window] : {std::pair{full, part}, std::pair{full_depth, part_depth},
+                                      std::pair{full_normal, part_normal}}) {
+    gridrt::ImageData a = gridrt::readImage(whole), b = gridrt::readImage(window);
+    ASSERT_EQ(b.width, tile.x1 - tile.x0) << window;
+    ASSERT_EQ(b.height, tile.y1 - tile.y0) << window;
+    ASSERT_EQ(a.channels, b.channels) << window;
+    size_t differ = 0;
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x)
+        for (int c = 0; c < a.channels; ++c)
+          differ += a.pixels[(size_t(y) * a.width + x) * a.channels + c] !=
+                    b.pixels[(size_t(y - tile.y0) * b.width + (x - tile.x0)) * b.channels + c];
+    EXPECT_EQ(differ, 0u) << window << " differs from " << whole << " in the window";
+  }
+}
+
 TEST(Tiles, WindowFileCarriesItsOffsetInTheDataWindow) {
   const std::string tile = tempPath("offset.exr");
   render(tile, {"--crop", "10,5,30,25", "--crop-output", "window"});

@@ -31,6 +31,13 @@ void writeBytes(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
 }
 
+// ctest gives every test (and the gridrt it runs) the build's own cache folder (run
+// outside ctest, this test fails: GRIDRT_CACHE_DIR is not set there).
+TEST(ProgramBinaryCache, TestsRunThroughCtestUseTheBuildsOwnCacheFolder) {
+  EXPECT_EQ(ProgramBinaryCache::defaultDir(), GRIDRT_TEST_CACHE_DIR)
+      << "run through ctest, which sets GRIDRT_CACHE_DIR to the build's test-cache folder";
+}
+
 TEST(ProgramBinaryCache, AnEntryComesBackOnlyForItsOwnKey) {
   const ProgramBinaryCache cache(test::freshDir("binary_cache_keys"));
   const std::vector<unsigned char> binary{1, 2, 3, 0, 255};

@@ -67,6 +67,44 @@ TEST_F(Adaptive, SupersamplingRefinesOnlyEdgesAndBeatsOneSampleForFewerRaysThanU
   EXPECT_LT(ea, 1.25 * e9);  // close to uniform 9 spp at a fraction of the rays
 }
 
+// The refined pixels are exactly those whose centre differs from the centre of one of its
+// four neighbours (left, right, above, below) by more than the threshold in some channel,
+// found here from a plain one-sample render; every other pixel keeps its centre's value bit
+// for bit. Both kinds of neighbour matter: the default scene's horizontal edges (floor,
+// ceiling, the block's top) refine pixels that only a vertical neighbour tells apart.
+TEST_F(Adaptive, RefinesExactlyThePixelsWhoseCentreDiffersFromAFourNeighbour) {
+  const int w = 128, h = 96;
+  Frame centres = render(small());
+  RenderSettings adaptive = small();
+  adaptive.adaptive_aa = true;
+  adaptive.aa_samples = 4;
+  Frame adapt = render(adaptive);
+  const std::vector<float>& c = centres.film.rgb;
+  auto differs = [&](int p, int q) {
+    for (int k = 0; k < 3; ++k)
+      if (std::fabs(c[3 * p + k] - c[3 * q + k]) > adaptive.aa_threshold) return true;
+    return false;
+  };
+  size_t want = 0, only_vertical = 0, kept = 0, unrefined = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int p = y * w + x;
+      const bool horizontal = (x > 0 && differs(p, p - 1)) || (x + 1 < w && differs(p, p + 1));
+      const bool vertical = (y > 0 && differs(p, p - w)) || (y + 1 < h && differs(p, p + w));
+      want += horizontal || vertical;
+      only_vertical += vertical && !horizontal;
+      if (horizontal || vertical) continue;
+      ++unrefined;
+      bool same = true;
+      for (int k = 0; k < 3; ++k) same &= adapt.film.rgb[3 * p + k] == c[3 * p + k];
+      kept += same;
+    }
+  ASSERT_GT(only_vertical, 0u) << "the scene no longer has pixels refined for a vertical edge";
+  EXPECT_EQ(adapt.refined_pixels, want);
+  EXPECT_EQ(kept, unrefined) << "a pixel with no differing neighbour was refined";
+  EXPECT_EQ(adapt.rays.primary, uint64_t(w) * h + want * 4);
+}
+
 TEST_F(Adaptive, DepthCutoffTracesFewerRaysWithinABoundedError) {
   RenderSettings full = small();
   Frame all = render(full);

@@ -237,14 +237,12 @@ TEST_F(Conformance, ListPathDiagnosticsAgreeWithTheCameraPathAndTheCounters) {
   EXPECT_EQ(skipping.winning_pe, all.winning_pe);
   EXPECT_EQ(skipping.list_length, all.list_length);
   uint64_t sum = 0;
-  size_t fewer = 0;
   for (size_t r = 0; r < up.size(); ++r) {
     EXPECT_LE(skipping.tests[r], all.tests[r]) << "ray " << r;
-    fewer += skipping.tests[r] < all.tests[r];
     sum += uint64_t(skipping.tests[r]);
   }
-  EXPECT_GT(interrupt.counters().skipped_pairs, 0u) << "the interrupt skipped nothing";
-  EXPECT_GT(fewer, 0u);
+  // How many it skips depends on the order the work-groups run in (interrupt_order_test
+  // checks that in order it skips); which hits it keeps does not.
   EXPECT_EQ(sum, interrupt.counters().tests);
 }
 
@@ -464,6 +462,37 @@ TEST_F(Conformance, BigTriangleWhoseHitLiesInALaterVoxelLosesToACloserSmallOne) 
   std::vector<GrHit> hits;
   gridrt.intersect(rays, HitMode::Closest, hits, nullptr);
   EXPECT_EQ(hits[0].prim, 1);
+}
+
+// The in-voxel rule, seen in the winner: phase 2 keeps the smallest (t, prim) whatever the
+// rule, but only with it does the PE of the voxel where the hit lies report it. Rays going
+// up meet the big slanted triangle in the third of four voxels; it overlaps the first one
+// too (a lower PE), which without the rule reports the same hit and is named the winner.
+TEST_F(Conformance, AHitIsWonByThePeOfTheVoxelItLiesIn) {
+  std::vector<GrTriangle> tris = {tri({-1, -1, -4}, {4, -1, 0.5f}, {-1, 4, 0.5f}, 0)};
+  Bounds b = boundsOf(tris);
+  UniformGrid grid = buildUniformGrid(tris, b, dims(1, 1, 4));
+  std::vector<GrRay> rays;
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 8; ++i)
+      rays.push_back(ray({-0.5f + 0.2f * i, -0.5f + 0.2f * j, -5.0f}, {0, 0, 1}));
+  for (PeInterrupt interrupt : {PeInterrupt::Off, PeInterrupt::AllRays}) {
+    GridRtIntersector gridrt(*runtime_, grid, interrupt);
+    std::vector<GrHit> hits;
+    RayDiagnostics diagnostics;
+    gridrt.intersect(rays, HitMode::Closest, hits, &diagnostics);
+    size_t checked = 0;
+    for (size_t r = 0; r < rays.size(); ++r) {
+      ASSERT_EQ(hits[r].prim, 0) << "ray " << r;
+      const float z = rays[r].oz + hits[r].t * rays[r].dz;
+      glm::vec3 lo, hi;
+      grid.voxelBoxOfPe(diagnostics.winning_pe[r], lo, hi);
+      EXPECT_TRUE(lo.z <= z && z <= hi.z) << gridrt.name() << " ray " << r << ": hit at z " << z
+                                          << " won by the PE of [" << lo.z << ", " << hi.z << "]";
+      checked += z > grid.info.minz + 1.5f * grid.info.cellz;  // beyond the first two voxels
+    }
+    EXPECT_GT(checked, rays.size() / 2) << "the hits should lie beyond the first voxels";
+  }
 }
 
 TEST_F(Conformance, RaysThroughVoxelEdgesAndCornersAreNotMissed) {

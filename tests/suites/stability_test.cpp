@@ -270,7 +270,9 @@ TEST_F(Stability, LoaderDropsNanAndInfTrianglesSoTheGridNeverSeesThem) {
   for (const auto& h : hits) EXPECT_LT(h.prim, 0);
 }
 
-// Renderer edge cases: a glass sphere over a lit floor, rendered small with brute force.
+// Renderer edge cases: a glass sphere over a lit floor, rendered small with brute force and
+// without ambient light, so that what the pixels show is the light's, come through the
+// glass (ambient alone would light the floor seen through it).
 class GlassRender : public Stability {
  protected:
   Frame render(const Camera& cam, int max_depth) {
@@ -294,6 +296,7 @@ class GlassRender : public Stability {
     rs.width = 32;
     rs.height = 24;
     rs.max_depth = max_depth;
+    rs.ambient = 0.0f;
     Renderer r(scene, cam, brute, rs);
     Frame f;
     r.render(f);

@@ -1,0 +1,66 @@
+// Whether the emulated interrupt saves work depends on the order work-groups run in: a PE
+// skips a ray only if a PE before it in the ray's list has already stored a hit. ctest runs
+// this test on one compute unit (POCL_MAX_PTHREAD_COUNT=1), whose one thread runs the
+// work-groups one after another in task order, which is PE order: rays going up through a
+// grid (PE index grows with z) mostly meet their PEs in that order, so PEs after a ray's
+// hit skip it. The hits never depend on the order (conformance_test checks them on all
+// cores).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+
+#include "camera_rays.h"
+#include "cl_runtime.h"
+#include "gltf_loader.h"
+#include "gridrt_intersector.h"
+#include "prepared_triangles.h"
+#include "test_support.h"
+#include "uniform_grid.h"
+
+namespace gridrt {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+TEST(InterruptOrder, InPeOrderEveryPeAfterAHitSkipsTheRay) {
+  const char* units = std::getenv("POCL_MAX_PTHREAD_COUNT");
+  ASSERT_TRUE(units && std::strcmp(units, "1") == 0)
+      << "run through ctest, which sets POCL_MAX_PTHREAD_COUNT=1";
+  if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
+  ClRuntime runtime("");
+  ASSERT_EQ(runtime.info().compute_units, 1u);
+  Scene scene = loadGltfFile(test::modelScene("bunny_res4.glb"));
+  const std::vector<GrTriangle> tris = prepareTriangles(scene);
+  const Bounds b = sceneBounds(scene);
+  const UniformGrid grid = buildUniformGrid(tris, b, GridSettings{});
+  // From below the grid's lowest z upwards, fanned over the box.
+  const glm::vec3 lo = b.lo, size = b.extent();
+  const glm::vec3 eye(lo.x + 0.5f * size.x, lo.y + 0.5f * size.y, lo.z - size.z);
+  std::vector<GrRay> up;
+  for (int j = 0; j < 96; ++j)
+    for (int i = 0; i < 128; ++i) {
+      const glm::vec3 target(lo.x + size.x * (i + 0.5f) / 128, lo.y + size.y * (j + 0.5f) / 96,
+                             lo.z + 2.0f * size.z);
+      const glm::vec3 d = glm::normalize(target - eye);
+      up.push_back(GrRay{eye.x, eye.y, eye.z, 0.0f, d.x, d.y, d.z, kInf});
+    }
+  GridRtIntersector plain(runtime, grid, PeInterrupt::Off);
+  GridRtIntersector interrupt(runtime, grid, PeInterrupt::AllRays);
+  RayDiagnostics all, skipping;
+  std::vector<GrHit> all_hits, skipping_hits;
+  plain.intersect(up, HitMode::Closest, all_hits, &all);
+  interrupt.intersect(up, HitMode::Closest, skipping_hits, &skipping);
+  EXPECT_EQ(test::hitMismatches(all_hits, skipping_hits, "interrupt"), 0u);
+  size_t fewer = 0;
+  for (size_t r = 0; r < up.size(); ++r) {
+    EXPECT_LE(skipping.tests[r], all.tests[r]) << "ray " << r;
+    fewer += skipping.tests[r] < all.tests[r];
+  }
+  EXPECT_GT(interrupt.counters().skipped_pairs, 0u) << "the interrupt skipped nothing";
+  EXPECT_GT(fewer, up.size() / 10);
+}
+
+}  // namespace
+}  // namespace gridrt
