@@ -199,7 +199,7 @@ TEST_F(CliOptions, CameraPicksTheNamedCamera) {
   EXPECT_GT(differingPixels(side.image, first.image), size_t(kWidth) * kHeight / 4);
   CommandResult r = runCommand(
       {gridrtBinary(), scene, "--camera", "no such camera", "-q", "-o", tempPath("none.png")});
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // the command line's mistake, not the file's
   EXPECT_NE(r.err.find("camera 'no such camera' not found"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("'side camera'"), std::string::npos) << "the cameras are listed: " << r.err;
 }
