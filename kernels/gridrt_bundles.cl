@@ -18,7 +18,9 @@
 #include "gridrt_types.h"
 #include "pe_closest16.h"
 
-#define LANES 16
+#if GR_PACKET_LANES != 16
+#error "the float16 lanes of this kernel are GR_PACKET_LANES"
+#endif
 
 /* The ray interval inside [lo, hi] on one axis, narrowing [t0, t1]; a zero direction is
  * inside the slab for every t or for none. fmin/fmax: a NaN product never decides. */
@@ -94,7 +96,7 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
   }
   m.pierced = gr_lane_bits16(pierced);
   m.skipped = gr_lane_bits16(skipped);
-  masks[out / LANES] = m;
+  masks[out / GR_PACKET_LANES] = m;
 }
 
 __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void gridrt_bundles(
@@ -115,17 +117,17 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
   const float loz = grid.minz + (float)vz * grid.cellz,
               hiz = grid.minz + (float)(vz + 1) * grid.cellz;
   const int begin = pe_tri_begin[task.pe], end = pe_tri_begin[task.pe + 1];
-  const int packets = (task.ray_count + LANES - 1) / LANES;
+  const int packets = (task.ray_count + GR_PACKET_LANES - 1) / GR_PACKET_LANES;
   /* Packet culling needs a common origin; rays with their own origins use segment
    * culling instead. */
   GrCullFrame no_cull = cull;
   no_cull.enabled = 0.0f;
 
   for (int p = get_local_id(0); p < packets; p += GR_PE_LOCAL_SIZE) {
-    const int first = task.first_ray + p * LANES;
-    const int out = task.out_first + p * LANES;
+    const int first = task.first_ray + p * GR_PACKET_LANES;
+    const int out = task.out_first + p * GR_PACKET_LANES;
     /* Lanes past the task's end read the next rays of the bundle and are masked off. */
-    const int16 in_task = GR_LANE_INDEX16 < (int16)(task.ray_count - p * LANES);
+    const int16 in_task = GR_LANE_INDEX16 < (int16)(task.ray_count - p * GR_PACKET_LANES);
     GrRays16 r;
     r.dx = vload16(0, planes + GR_PLANE_DX * stride + first);
     r.dy = vload16(0, planes + GR_PLANE_DY * stride + first);

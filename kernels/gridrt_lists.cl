@@ -18,7 +18,9 @@
 #include "gridrt_types.h"
 #include "pe_closest16.h"
 
-#define LANES 16
+#if GR_PACKET_LANES != 16
+#error "the float16 lanes of this kernel are GR_PACKET_LANES"
+#endif
 
 /* Plane q of a pair packet (gridrt_types.h). */
 inline float16 gr_pair_plane16(__global const float* packet, int q) {
@@ -31,11 +33,11 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
     __global int* first_hit_key, int any_hit, int interrupt, __global const float* seg_planes,
     int seg_stride) {
   GrPeTask task = tasks[get_group_id(0)];
-  int first = get_local_id(0) * LANES;
+  int first = get_local_id(0) * GR_PACKET_LANES;
   if (first >= task.pair_count) return;
-  int lanes = min(LANES, task.pair_count - first);
+  int lanes = min(GR_PACKET_LANES, task.pair_count - first);
   const int packet_index = task.first_packet + get_local_id(0);
-  __global const float* packet = pairs + (size_t)packet_index * (GR_PAIR_PLANES * LANES);
+  __global const float* packet = pairs + (size_t)packet_index * (GR_PAIR_PLANES * GR_PACKET_LANES);
   GrRays16 r16;
   r16.ox = gr_pair_plane16(packet, GR_PAIR_OX);
   r16.oy = gr_pair_plane16(packet, GR_PAIR_OY);
@@ -49,13 +51,14 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
   float16 t_enter = gr_pair_plane16(packet, GR_PAIR_T_ENTER);
   float16 t_exit = gr_pair_plane16(packet, GR_PAIR_T_EXIT);
   const int16 ray16 = as_int16(gr_pair_plane16(packet, GR_PAIR_RAY));
-  int ray_of[LANES];
+  int ray_of[GR_PACKET_LANES];
   vstore16(ray16, 0, ray_of);
   const int16 pierced = GR_LANE_INDEX16 < (int16)lanes;
   int16 active = pierced, skipped = (int16)0;
   if (interrupt) {
-    int key[LANES];
-    for (int k = 0; k < LANES; ++k) key[k] = k < lanes ? first_hit_key[ray_of[k]] : INT_MAX;
+    int key[GR_PACKET_LANES];
+    for (int k = 0; k < GR_PACKET_LANES; ++k)
+      key[k] = k < lanes ? first_hit_key[ray_of[k]] : INT_MAX;
     skipped = pierced & (vload16(0, key) < as_int16(t_enter));
     active = pierced & ~skipped;
   }
@@ -63,7 +66,7 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
   __global int* out_ray = (__global int*)(results + GR_RESULT_RAY * all_lanes);
   __global GrPacketMasks* masks =
       (__global GrPacketMasks*)(results + GR_LIST_RESULT_PLANES * all_lanes);
-  const int out = packet_index * LANES;
+  const int out = packet_index * GR_PACKET_LANES;
   GrPacketMasks m;
   m.pierced = gr_lane_bits16(pierced);
   m.hit = 0;

@@ -6,7 +6,6 @@
 namespace gridrt {
 
 namespace {
-constexpr int kLanes = 16;     // rays per work-item (float16)
 constexpr int kLocalSize = 8;  // work-items per work-group: fixed, so PoCL compiles once
 }  // namespace
 
@@ -33,7 +32,7 @@ void BruteIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
       kernel_.setArg(3, triangle_count_);
       kernel_.setArg(4, mode == HitMode::AnyHit ? 1 : 0);
       kernel_.setArg(5, hits_.get());
-      size_t items = (n + kLanes - 1) / kLanes;
+      size_t items = (n + GR_PACKET_LANES - 1) / GR_PACKET_LANES;
       size_t global = (items + kLocalSize - 1) / kLocalSize * kLocalSize;
       rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global),
                                        cl::NDRange(kLocalSize));

@@ -79,7 +79,7 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
 
 void GridRtIntersector::runPes(size_t n, HitMode mode) {
   const std::vector<GrPeTask>& tasks = bins_.tasks;
-  const size_t lanes = bins_.packets * kPeLanes;
+  const size_t lanes = bins_.packets * GR_PACKET_LANES;
   const size_t result_floats = GR_LIST_RESULT_PLANES * lanes + 4 * bins_.packets;
   rt_.runWithHostThreadsAsleep([&] {
     enqueueUnmaps();
@@ -188,7 +188,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
     diagnostics->winning_pe.assign(n, -1);
     diagnostics->list_length.assign(n, 0);
   }
-  const PacketResults results(results_map_, bins_.packets * kPeLanes, GR_LIST_RESULT_PLANES);
+  const PacketResults results(results_map_, bins_.packets * GR_PACKET_LANES, GR_LIST_RESULT_PLANES);
   const std::vector<GrPeTask>& tasks = bins_.tasks;
   uint64_t tests = 0, tests_run = 0, skipped = 0, longest = 0;
 #pragma omp parallel reduction(+ : tests, tests_run, skipped) reduction(max : longest)
@@ -210,7 +210,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
     for (size_t k = 0; k < tasks.size(); ++k) {
       const GrPeTask& task = tasks[k];
       const int cost = grid_.triangleCountOfPe(task.pe);
-      const int packets = (task.pair_count + kPeLanes - 1) / kPeLanes;
+      const int packets = (task.pair_count + GR_PACKET_LANES - 1) / GR_PACKET_LANES;
       for (int p = task.first_packet; p < task.first_packet + packets; ++p) {
         const GrPacketMasks& m = results.masks[p];
         if (int(k % size_t(count)) == me) {
@@ -220,7 +220,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
         }
         for (int bits = m.hit | (diagnostics ? m.skipped : 0); bits; bits &= bits - 1) {
           const int lane = __builtin_ctz(unsigned(bits));
-          const size_t at = size_t(p) * kPeLanes + lane;
+          const size_t at = size_t(p) * GR_PACKET_LANES + lane;
           const int ray = results.ray[at];
           if (ray < lo || ray >= hi) continue;
           if (m.skipped & (1 << lane)) {
@@ -330,7 +330,8 @@ void GridRtIntersector::generateAndIntersectPrimary(const PinholeView& view,
           const size_t b0 = size_t(ty) * band_slots + size_t(ly) * kTileSize;
           for (int tx = 0; tx < tiles_x; ++tx)
             for (int lx = 0; lx < kTileSize; ++lx) {
-              const size_t b = b0 + size_t(tx) * kBundleLanes + lx, x = size_t(tx) * kTileSize + lx;
+              const size_t b = b0 + size_t(tx) * GR_PACKET_LANES + lx,
+                           x = size_t(tx) * kTileSize + lx;
               dx[b] = rdx[x];
               dy[b] = rdy[x];
               dz[b] = rdz[x];
@@ -355,7 +356,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   hits.resize(n);
   const size_t slots = bundles.ray_of.size();
   // A packet may read up to 15 rays past its task's end: one packet of padding.
-  const size_t stride = slots + kBundleLanes;
+  const size_t stride = slots + GR_PACKET_LANES;
   Stopwatch clock;
 
   // Phase 1: the rays in bundle order, as planes, straight into the device buffer: the
@@ -420,7 +421,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       writeStarts(b, r >= 0 ? rays[r] : common);
     }
   }
-  const size_t lanes = bundles.out_lanes, packets = lanes / kBundleLanes;
+  const size_t lanes = bundles.out_lanes, packets = lanes / GR_PACKET_LANES;
   rt_.runWithHostThreadsAsleep([&] {
     enqueueUnmaps();
     enqueuePlanesUnmap();
@@ -486,7 +487,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     const int me = omp_get_thread_num(), count = omp_get_num_threads();
     std::vector<int>& pe_pairs = thread_pe_pairs_[me];
     pe_pairs.assign(grid_.peCount(), 0);
-    const size_t chunk = (slots / kBundleLanes + count - 1) / count * kBundleLanes;
+    const size_t chunk = (slots / GR_PACKET_LANES + count - 1) / count * GR_PACKET_LANES;
     const long long lo = (long long)std::min(slots, size_t(me) * chunk);
     const long long hi = (long long)std::min(slots, size_t(lo) + chunk);
     // Every ray a miss to begin with, written in ray order (in bundle order it would be a
@@ -500,14 +501,14 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       const long long last = std::min<long long>(task.first_ray + task.ray_count, hi);
       if (first >= last) continue;
       const int cost = grid_.triangleCountOfPe(task.pe);
-      for (int p = int(first - task.first_ray) / kBundleLanes;
-           p * kBundleLanes < last - task.first_ray; ++p) {
-        const long long base = task.first_ray + p * kBundleLanes;
+      for (int p = int(first - task.first_ray) / GR_PACKET_LANES;
+           p * GR_PACKET_LANES < last - task.first_ray; ++p) {
+        const long long base = task.first_ray + p * GR_PACKET_LANES;
         // The lanes of this packet inside [first, last).
         int in_range = 0xFFFF;
         if (base < first) in_range &= 0xFFFF << int(first - base);
-        if (base + kBundleLanes > last) in_range &= 0xFFFF >> int(base + kBundleLanes - last);
-        const GrPacketMasks& m = results.masks[task.out_first / kBundleLanes + p];
+        if (base + GR_PACKET_LANES > last) in_range &= 0xFFFF >> int(base + GR_PACKET_LANES - last);
+        const GrPacketMasks& m = results.masks[task.out_first / GR_PACKET_LANES + p];
         // A packet's tests count in the thread whose range holds its first lane.
         if (base >= lo) tests_run += uint64_t(m.tests);
         const int pierced = m.pierced & in_range, tested = pierced & ~m.skipped;
@@ -523,7 +524,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
             ++diagnostics->list_length[ray];
             if (tested & (1 << k)) diagnostics->tests[ray] += cost;
           }
-        const int out = task.out_first + p * kBundleLanes;
+        const int out = task.out_first + p * GR_PACKET_LANES;
         for (int bits = m.hit & in_range; bits; bits &= bits - 1) {
           const int k = __builtin_ctz(unsigned(bits));
           const int ray = bundles.ray_of[base + k];

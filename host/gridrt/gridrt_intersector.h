@@ -18,10 +18,10 @@
 namespace gridrt {
 
 // Work-items per PE work-group (fixed: each new local size is a new compile on PoCL).
-// Each work-item tests 16 rays in float16 lanes, so one task holds up to 64 rays.
+// Each work-item tests one packet (GR_PACKET_LANES rays in float16 lanes), so one task
+// holds up to 64 rays.
 constexpr int kPeLocalSize = 4;
-constexpr int kPeLanes = 16;
-constexpr int kPeTaskRays = kPeLocalSize * kPeLanes;
+constexpr int kPeTaskRays = kPeLocalSize * GR_PACKET_LANES;
 // Fewer shadow rays than this towards one light go through per-ray traversal lists: a
 // sparse cube wastes most packet lanes. Measured on the default scene before segment
 // culling: 2,017 rays cost 4.7 ms as bundles, about 1 ms as lists; 282,407 rays 23 ms as

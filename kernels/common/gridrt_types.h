@@ -43,11 +43,16 @@ typedef struct {
   int nx, ny, nz, pe_count;
 } GrGridInfo; /* 48 bytes */
 
-/* The list path's (ray, PE) pairs, binned per PE, 16 to a packet (a work-item's lanes),
+/* Rays per packet, on both sides: a work-item of every kernel tests one packet in float16
+ * lanes (the kernels' vector types are 16 wide: brute.cl, gridrt_lists.cl and
+ * gridrt_bundles.cl stop on another value), a camera tile is one packet, and the host
+ * bins, bundles and reduces the rays by packet. */
+#define GR_PACKET_LANES 16
+
+/* The list path's (ray, PE) pairs, binned per PE, GR_PACKET_LANES to a packet,
  * each carrying its ray, so a work-item loads its packet, one vload16 per plane, instead
  * of gathering rays: plane q of lane k at gr_pair_value(q, k) (structure of arrays). RAY
  * (the ray's index in the batch) holds int bits. Lanes past a part's last pair are zero. */
-#define GR_PAIR_LANES 16
 #define GR_PAIR_OX 0
 #define GR_PAIR_OY 1
 #define GR_PAIR_OZ 2
@@ -60,7 +65,7 @@ typedef struct {
 #define GR_PAIR_T_EXIT 9  /* ... and where it leaves it */
 #define GR_PAIR_RAY 10
 #define GR_PAIR_PLANES 11
-#define gr_pair_value(q, k) ((q)*GR_PAIR_LANES + (k))
+#define gr_pair_value(q, k) ((q)*GR_PACKET_LANES + (k))
 
 /* One work-group's share of one PE: the pair_count pairs from packet first_packet on
  * (work-item w takes packet first_packet + w, and writes that packet's results). */
