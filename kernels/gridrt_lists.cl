@@ -4,9 +4,9 @@
  * voxel's triangles. Phase 1 of the reduction happens here: each (ray, PE) pair keeps
  * only its closest hit that lies INSIDE the voxel (t_enter <= t <= t_exit). A packet's
  * results go to its own lanes of the result planes (GR_RESULT_*), written whole and only
- * when a lane hits, and its masks to its GrPacketMasks: the hits are few (a few percent of
- * the pairs of secondary rays), and 16 scattered stores per packet, one per pair's slot
- * in the ray-major lists, had cost about a tenth of the kernel.
+ * when a lane hits, and its masks to its GrPacketMasks: the hits are few among the pairs
+ * of secondary rays, and 16 scattered stores per packet, one per pair's slot
+ * in the ray-major lists, had cost a noticeable share of the kernel.
  * Phase 2 (per ray, the smallest t over its PEs: the first PE in list order with a hit
  * holds it) runs on the host.
  *

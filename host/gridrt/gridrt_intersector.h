@@ -23,11 +23,10 @@ namespace gridrt {
 constexpr int kPeLocalSize = 4;
 constexpr int kPeTaskRays = kPeLocalSize * GR_PACKET_LANES;
 // Fewer shadow rays than this towards one light go through per-ray traversal lists: a
-// sparse cube wastes most packet lanes. Measured on the default scene before segment
-// culling: 2,017 rays cost 4.7 ms as bundles, about 1 ms as lists; 282,407 rays 23 ms as
-// bundles, ~100 ms as lists. With segment culling in both, moving the 11k-21k-ray batches
-// of the secondary hits to bundles took the frame from 136 to 126 ms (A/B medians of 7;
-// 1,024 instead of 8,192 made no difference).
+// sparse cube wastes most packet lanes. On the default scene small batches cost less as
+// lists and large ones far less as bundles; with segment culling in both, the secondary
+// hits' mid-sized batches are faster as bundles, and a lower threshold made no difference
+// (docs/history.md).
 constexpr size_t kMinLightBundleRays = 8192;
 // Light bundles that would test more lanes than this per ray (a light among dense geometry
 // with a fine grid: every near voxel covers a wide cone) also fall back to the lists,
@@ -38,13 +37,12 @@ constexpr size_t kMaxLightBundleLanesPerRay = 64;
 // ray once an earlier PE of the ray's list has a hit. The hits are the same either way.
 enum class PeInterrupt {
   Off,         // none: every PE tests every ray it receives
-  CameraRays,  // camera bundles only (gridrt's default). Measured on an AMD EPYC (AVX2),
-               // alternated with Off: bunny_res4 320x240 primary 2.71 -> 2.40 ms, bunny
-               // 1280x960 primary 54.1 -> 46.8 ms, bunny Whitted 42.5 -> 39.3 ms, the
-               // default Whitted frame 110.9 -> 111.0 ms (its walls are hit in the first PE)
+  CameraRays,  // camera bundles only (gridrt's default): faster than Off on the bunny's
+               // primary and Whitted frames, the same on the default Whitted frame (its
+               // walls are hit in the first PE); docs/history.md
   AllRays,     // every batch (--pe-interrupt): shadow and list batches too. Mixed, so not
-               // the default: Whitted frames 97.1 -> 92.2 ms (default scene) but 33.2 ->
-               // 37.7 ms (bunny) here; slower on the default scene on an AVX-512 Xeon
+               // the default: faster on some Whitted frames, slower on others, and the
+               // balance changes with the machine
 };
 
 class GridRtIntersector : public Intersector {
