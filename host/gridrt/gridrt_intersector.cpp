@@ -63,8 +63,9 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
     : rt_(runtime), grid_(grid), interrupt_(interrupt) {
   const std::string defines = "-DGR_PE_LOCAL_SIZE=" + std::to_string(kPeLocalSize) + " " +
                               segmentCullDefines() + " " + kernel_options.defines();
-  kernel_ = cl::Kernel(rt_.program("gridrt_lists.cl", defines), "gridrt_lists");
-  bundle_kernel_ = cl::Kernel(rt_.program("gridrt_bundles.cl", defines), "gridrt_bundles");
+  kernel_ = KernelCall<ListsKernelArgs>(rt_.program("gridrt_lists.cl", defines), "gridrt_lists");
+  bundle_kernel_ =
+      KernelCall<BundlesKernelArgs>(rt_.program("gridrt_bundles.cl", defines), "gridrt_bundles");
   checkTriangleLayout(grid.pe_triangles, kernel_options);
   pe_tri_begin_.uploadNow(rt_, grid.pe_tri_begin);
   voxel_of_pe_.uploadNow(rt_, grid.voxel_of_pe);
@@ -90,20 +91,20 @@ void GridRtIntersector::runPes(size_t n, HitMode mode) {
     first_hit_key_.reserve(rt_, n);
     if (allInterrupt())
       rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, n * sizeof(int));
-    kernel_.setArg(0, tasks_.get());
-    kernel_.setArg(1, entries_.get());
-    kernel_.setArg(2, pe_tri_begin_.get());
-    kernel_.setArg(3, pe_triangles_.get());
-    kernel_.setArg(4, results_.get());
-    kernel_.setArg(5, int(lanes));
-    kernel_.setArg(6, first_hit_key_.get());
-    kernel_.setArg(7, mode == HitMode::AnyHit ? 1 : 0);
-    kernel_.setArg(8, allInterrupt() ? 1 : 0);
-    kernel_.setArg(9, seg_planes_.get());
-    kernel_.setArg(10, seg_stride_);
-    rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
-                                     cl::NDRange(tasks.size() * kPeLocalSize),
-                                     cl::NDRange(kPeLocalSize));
+    ListsKernelArgs args;
+    args.tasks = tasks_.get();
+    args.pairs = entries_.get();
+    args.pe_tri_begin = pe_tri_begin_.get();
+    args.pe_tris = pe_triangles_.get();
+    args.results = results_.get();
+    args.lanes_total = int(lanes);
+    args.first_hit_key = first_hit_key_.get();
+    args.any_hit = mode == HitMode::AnyHit ? 1 : 0;
+    args.interrupt = allInterrupt() ? 1 : 0;
+    args.seg_planes = seg_planes_.get();
+    args.seg_stride = seg_stride_;
+    kernel_.enqueue(rt_.queue(), cl::NDRange(tasks.size() * kPeLocalSize),
+                    cl::NDRange(kPeLocalSize), args);
     results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
     // Mapped again for the next batch's pairs once the kernel has read them.
     entries_map_ =
@@ -433,33 +434,29 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     first_hit_key_.reserve(rt_, stride);
     if (interrupt)
       rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, stride * sizeof(int));
-    cl::Kernel& k = bundle_kernel_;
-    k.setArg(0, bundle_tasks_.get());
-    k.setArg(1, planes_.get());
-    int arg = 2;
-    k.setArg(arg++, int(stride));
-    k.setArg(arg++, common_origin ? 1 : 0);
-    k.setArg(arg++, common);
-    k.setArg(arg++, grid_.info);
-    k.setArg(arg++, voxel_of_pe_.get());
-    k.setArg(arg++, pe_tri_begin_.get());
-    k.setArg(arg++, pe_triangles_.get());
-    k.setArg(arg++, results_.get());
-    k.setArg(arg++, int(lanes));
-    k.setArg(arg++, first_hit_key_.get());
-    k.setArg(arg++, mode == HitMode::AnyHit ? 1 : 0);
-    k.setArg(arg++, interrupt ? 1 : 0);
-    const GrCullFrame culling =
-        prepareCulling(check_cover && uncovered == 0 && common_origin, frame, common);
-    packet_culling_used_ = culling.enabled != 0.0f;
-    k.setArg(arg++, culling);
-    k.setArg(arg++, cull_planes_.reserve(rt_, 1));
-    k.setArg(arg++, int(cull_cache_.stride()));
-    k.setArg(arg++, seg_planes_.get());
-    k.setArg(arg++, seg_stride_);
-    rt_.queue().enqueueNDRangeKernel(k, cl::NullRange,
-                                     cl::NDRange(bundles.tasks.size() * kPeLocalSize),
-                                     cl::NDRange(kPeLocalSize));
+    BundlesKernelArgs args;
+    args.tasks = bundle_tasks_.get();
+    args.planes = planes_.get();
+    args.stride = int(stride);
+    args.common_origin = common_origin ? 1 : 0;
+    args.common = common;
+    args.grid = grid_.info;
+    args.voxel_of_pe = voxel_of_pe_.get();
+    args.pe_tri_begin = pe_tri_begin_.get();
+    args.pe_tris = pe_triangles_.get();
+    args.results = results_.get();
+    args.lanes = int(lanes);
+    args.first_hit_key = first_hit_key_.get();
+    args.any_hit = mode == HitMode::AnyHit ? 1 : 0;
+    args.interrupt = interrupt ? 1 : 0;
+    args.cull = prepareCulling(check_cover && uncovered == 0 && common_origin, frame, common);
+    packet_culling_used_ = args.cull.enabled != 0.0f;
+    args.cull_planes = cull_planes_.reserve(rt_, 1);
+    args.cull_stride = int(cull_cache_.stride());
+    args.seg_planes = seg_planes_.get();
+    args.seg_stride = seg_stride_;
+    bundle_kernel_.enqueue(rt_.queue(), cl::NDRange(bundles.tasks.size() * kPeLocalSize),
+                           cl::NDRange(kPeLocalSize), args);
     results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
     // Mapped again for the next bundle batch once the kernel has read it.
     planes_map_ =

@@ -8,6 +8,7 @@
 #include "cl_runtime.h"
 #include "device_buffer.h"
 #include "intersector.h"
+#include "kernel_call.h"
 #include "light_bundles.h"
 #include "packet_culling.h"
 #include "pe_binning.h"
@@ -90,7 +91,41 @@ class GridRtIntersector : public Intersector {
   ClRuntime& rt_;
   const UniformGrid& grid_;
   PeInterrupt interrupt_;
-  cl::Kernel kernel_;
+  // gridrt_lists.cl's gridrt_lists: the list path's pair packets.
+  struct ListsKernelArgs {
+    cl::Buffer tasks, pairs, pe_tri_begin, pe_tris, results;
+    int lanes_total;
+    cl::Buffer first_hit_key;
+    int any_hit, interrupt;
+    cl::Buffer seg_planes;
+    int seg_stride;
+    auto inOrder() const {
+      return std::tie(tasks, pairs, pe_tri_begin, pe_tris, results, lanes_total, first_hit_key,
+                      any_hit, interrupt, seg_planes, seg_stride);
+    }
+  };
+  // gridrt_bundles.cl's gridrt_bundles: the ray bundles' planes.
+  struct BundlesKernelArgs {
+    cl::Buffer tasks, planes;
+    int stride, common_origin;
+    GrRay common;
+    GrGridInfo grid;
+    cl::Buffer voxel_of_pe, pe_tri_begin, pe_tris, results;
+    int lanes;
+    cl::Buffer first_hit_key;
+    int any_hit, interrupt;
+    GrCullFrame cull;
+    cl::Buffer cull_planes;
+    int cull_stride;
+    cl::Buffer seg_planes;
+    int seg_stride;
+    auto inOrder() const {
+      return std::tie(tasks, planes, stride, common_origin, common, grid, voxel_of_pe, pe_tri_begin,
+                      pe_tris, results, lanes, first_hit_key, any_hit, interrupt, cull, cull_planes,
+                      cull_stride, seg_planes, seg_stride);
+    }
+  };
+  KernelCall<ListsKernelArgs> kernel_;
   TraversalLists lists_;
   PeBins bins_;
   // Phase 1's results, mapped from the device buffers (no copy on a CPU device) for phase
@@ -158,7 +193,7 @@ class GridRtIntersector : public Intersector {
   DeviceBuffer<GrBundleTask> bundle_tasks_{"the bundle tasks", CL_MEM_READ_ONLY};
   // Phase 1's results of either path (GR_RESULT_*): planes per lane, then packet masks.
   DeviceBuffer<float> results_{"the per-PE results", CL_MEM_WRITE_ONLY};
-  cl::Kernel bundle_kernel_;
+  KernelCall<BundlesKernelArgs> bundle_kernel_;
   DeviceBuffer<int> pe_tri_begin_{"the PE offsets", CL_MEM_READ_ONLY};
   DeviceBuffer<GrTriangle> pe_triangles_{"the PE triangles", CL_MEM_READ_ONLY};
   DeviceBuffer<float> entries_{"the PE inputs", CL_MEM_READ_ONLY};
