@@ -54,6 +54,19 @@ struct PacketResults {
       if (winner) *winner = pe;
     }
   }
+  // Phase 2 for the lanes of `hit_bits` of one packet of PE `pe`, whose lane 0 is result
+  // lane `first`: each lane's ray (ray_of(lane); -1 for a ray another thread reduces)
+  // keeps the nearer of its hit and the lane's (keepNearer); winners may be null.
+  template <typename RayOfLane>
+  void reduceHits(int hit_bits, size_t first, int pe, RayOfLane ray_of, std::vector<GrHit>& hits,
+                  std::vector<int>* winners) const {
+    for (int bits = hit_bits; bits; bits &= bits - 1) {
+      const int lane = __builtin_ctz(unsigned(bits));
+      const int ray = ray_of(lane);
+      if (ray >= 0)
+        keepNearer(first + size_t(lane), pe, hits[ray], winners ? &(*winners)[ray] : nullptr);
+    }
+  }
 };
 
 }  // namespace
@@ -219,18 +232,19 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
           tests_run += uint64_t(m.tests);
           skipped += popcount(m.skipped);
         }
-        for (int bits = m.hit | (diagnostics ? m.skipped : 0); bits; bits &= bits - 1) {
-          const int lane = __builtin_ctz(unsigned(bits));
-          const size_t at = size_t(p) * GR_PACKET_LANES + lane;
-          const int ray = results.ray[at];
-          if (ray < lo || ray >= hi) continue;
-          if (m.skipped & (1 << lane)) {
-            diagnostics->tests[ray] -= cost;
-            continue;
+        // The rays of this thread's range, by lane (the pairs carry their rays).
+        const size_t first = size_t(p) * GR_PACKET_LANES;
+        auto rayOfLane = [&](int lane) {
+          const int ray = results.ray[first + size_t(lane)];
+          return ray >= lo && ray < hi ? ray : -1;
+        };
+        if (diagnostics)
+          for (int bits = m.skipped; bits; bits &= bits - 1) {
+            const int ray = rayOfLane(__builtin_ctz(unsigned(bits)));
+            if (ray >= 0) diagnostics->tests[ray] -= cost;
           }
-          results.keepNearer(at, task.pe, hits[ray],
-                             diagnostics ? &diagnostics->winning_pe[ray] : nullptr);
-        }
+        results.reduceHits(m.hit & ~m.skipped, first, task.pe, rayOfLane, hits,
+                           diagnostics ? &diagnostics->winning_pe : nullptr);
       }
     }
   }
@@ -521,13 +535,9 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
             ++diagnostics->list_length[ray];
             if (tested & (1 << k)) diagnostics->tests[ray] += cost;
           }
-        const int out = task.out_first + p * GR_PACKET_LANES;
-        for (int bits = m.hit & in_range; bits; bits &= bits - 1) {
-          const int k = __builtin_ctz(unsigned(bits));
-          const int ray = bundles.ray_of[base + k];
-          results.keepNearer(size_t(out + k), task.pe, hits[ray],
-                             winners ? &(*winners)[ray] : nullptr);
-        }
+        results.reduceHits(
+            m.hit & in_range, size_t(task.out_first + p * GR_PACKET_LANES), task.pe,
+            [&](int lane) { return bundles.ray_of[base + lane]; }, hits, winners);
       }
     }
   }
