@@ -76,14 +76,24 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
     /* The list path's rays have their own origins: segment culling. */
     const GrSegmentPacket seg =
         gr_segment_packet16(&r16, fmax(t_enter, tmin), fmin(t_exit, tmax), active);
-    float16 best_t, best_u, best_v;
-    int16 best_prim;
-    gr_pe_closest16(&r16, pe_tris, pe_tri_begin[task.pe], pe_tri_begin[task.pe + 1], tmin, tmax,
-                    t_enter, t_exit, active, any_hit, &best_t, &best_u, &best_v, &best_prim,
-                    (__global const float*)0, 0, (float4)0.0f, 0, &seg, seg_planes, seg_stride,
-                    &m.tests);
-    m.hit = gr_store_packet_hits(best_t, best_prim, best_u, best_v, results, all_lanes, out,
-                                 interrupt, first_hit_key, ray16, t_enter);
+    GrPeGeometry pe;
+    pe.tris = pe_tris;
+    pe.begin = pe_tri_begin[task.pe];
+    pe.end = pe_tri_begin[task.pe + 1];
+    pe.cull_planes = (__global const float*)0; /* no packet culling on this path */
+    pe.cull_stride = 0;
+    pe.seg_planes = seg_planes;
+    pe.seg_stride = seg_stride;
+    GrPacketOutput o;
+    o.results = results;
+    o.lanes_total = lanes_total;
+    o.first_hit_key = first_hit_key;
+    o.any_hit = any_hit;
+    o.interrupt = interrupt;
+    GrHits16 best;
+    gr_pe_closest16(&r16, &pe, tmin, tmax, t_enter, t_exit, active, any_hit, (float4)0.0f, 0, &seg,
+                    &best, &m.tests);
+    m.hit = gr_store_packet_hits(&best, &o, out, ray16, t_enter);
   }
   if (m.hit | m.skipped) vstore16(ray16, 0, out_ray + out);
   masks[packet_index] = m;

@@ -150,6 +150,41 @@ typedef struct {
 #define GR_SEG_REACH 13
 #define GR_SEG_PLANES 14
 
+/* A voxel's box, [lo, hi] on each axis: the slabs a PE kernel tests its packets against. */
+typedef struct {
+  float lox, loy, loz;
+  float hix, hiy, hiz;
+} GrVoxelBox; /* 24 bytes */
+
+#ifdef __OPENCL_C_VERSION__
+/* What the phase-1 loop of a PE reads (kernels only: it holds pointers): the PE's
+ * triangles tris[begin, end), the packet-culling boxes and the segment-culling planes of
+ * every PE triangle (null and 0 where a path has none). */
+typedef struct {
+  __global const GrTriangle* tris;
+  int begin, end;
+  __global const float* cull_planes;
+  int cull_stride;
+  __global const float* seg_planes;
+  int seg_stride;
+} GrPeGeometry;
+
+/* How a packet is tested and where its phase-1 results go: the result planes of
+ * lanes_total lanes (GR_RESULT_*), the interrupt's keys, the hit mode. */
+typedef struct {
+  __global float* results;
+  int lanes_total;
+  __global int* first_hit_key;
+  int any_hit, interrupt;
+} GrPacketOutput;
+
+/* The closest in-voxel hit of each lane of a packet (prim -1: none). */
+typedef struct {
+  float16 t, u, v;
+  int16 prim;
+} GrHits16;
+#endif
+
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(GrRay) == 32, "GrRay layout");
 static_assert(sizeof(GrTriangle) == 48, "GrTriangle layout");
@@ -159,6 +194,7 @@ static_assert(sizeof(GrPeTask) == 16, "GrPeTask layout");
 static_assert(sizeof(GrBundleTask) == 16, "GrBundleTask layout");
 static_assert(sizeof(GrPacketMasks) == 16, "GrPacketMasks layout");
 static_assert(sizeof(GrCullFrame) == 48, "GrCullFrame layout");
+static_assert(sizeof(GrVoxelBox) == 24, "GrVoxelBox layout");
 #endif
 
 #endif
