@@ -5,16 +5,19 @@
 #include "gridrt_types.h"
 #include "ray_triangle16.h"
 
-#define LANES 16
+#if GR_PACKET_LANES != 16
+#error "the float16 lanes of this kernel are GR_PACKET_LANES"
+#endif
 
 __kernel void brute_intersect(__global const GrRay* rays, int ray_count,
                               __global const GrTriangle* tris, int tri_count, int any_hit,
                               __global GrHit* hits) {
-  int first = get_global_id(0) * LANES;
+  int first = get_global_id(0) * GR_PACKET_LANES;
   if (first >= ray_count) return;
-  float a_ox[LANES], a_oy[LANES], a_oz[LANES], a_dx[LANES], a_dy[LANES], a_dz[LANES];
-  float a_tmin[LANES], a_tmax[LANES];
-  for (int k = 0; k < LANES; ++k) {
+  float a_ox[GR_PACKET_LANES], a_oy[GR_PACKET_LANES], a_oz[GR_PACKET_LANES], a_dx[GR_PACKET_LANES],
+      a_dy[GR_PACKET_LANES], a_dz[GR_PACKET_LANES];
+  float a_tmin[GR_PACKET_LANES], a_tmax[GR_PACKET_LANES];
+  for (int k = 0; k < GR_PACKET_LANES; ++k) {
     int r = min(first + k, ray_count - 1); /* pad with the last ray */
     GrRay ray = rays[r];
     a_ox[k] = ray.ox;
@@ -50,13 +53,13 @@ __kernel void brute_intersect(__global const GrRay* rays, int ray_count,
     best_prim = select(best_prim, (int16)tri.prim, hit);
     if (any_hit && all(best_prim >= 0)) break;
   }
-  float o_t[LANES], o_u[LANES], o_v[LANES];
-  int o_p[LANES];
+  float o_t[GR_PACKET_LANES], o_u[GR_PACKET_LANES], o_v[GR_PACKET_LANES];
+  int o_p[GR_PACKET_LANES];
   vstore16(best_t, 0, o_t);
   vstore16(best_u, 0, o_u);
   vstore16(best_v, 0, o_v);
   vstore16(best_prim, 0, o_p);
-  for (int k = 0; k < LANES && first + k < ray_count; ++k) {
+  for (int k = 0; k < GR_PACKET_LANES && first + k < ray_count; ++k) {
     GrHit h;
     h.t = o_t[k];
     h.prim = o_p[k];

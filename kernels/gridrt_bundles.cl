@@ -18,7 +18,9 @@
 #include "gridrt_types.h"
 #include "pe_closest16.h"
 
-#define LANES 16
+#if GR_PACKET_LANES != 16
+#error "the float16 lanes of this kernel are GR_PACKET_LANES"
+#endif
 
 /* The ray interval inside [lo, hi] on one axis, narrowing [t0, t1]; a zero direction is
  * inside the slab for every t or for none. fmin/fmax: a NaN product never decides. */
@@ -36,28 +38,29 @@ inline void gr_slab16(float16 o, float16 d, float16 inv, float lo, float hi, flo
  * camera rays (origin and interval splats of one ray) the compiler folds every operation
  * on the common origin into one scalar operation per triangle: the same operations on the
  * same values, so every lane rounds exactly as before. */
-inline __attribute__((always_inline)) void gr_bundle_packet(
-    const GrRays16* r, float16 tmin, float16 tmax, int16 in_task, int first, int out, float lox,
-    float hix, float loy, float hiy, float loz, float hiz, __global const GrTriangle* pe_tris,
-    int begin, int end, __global float* results, int lanes, __global int* first_hit_key,
-    int any_hit, int interrupt, GrCullFrame cull, __global const float* cull_planes,
-    int cull_stride, int seg_cull, __global const float* seg_planes, int seg_stride) {
+inline __attribute__((always_inline)) void gr_bundle_packet(const GrRays16* r, float16 tmin,
+                                                            float16 tmax, int16 in_task, int first,
+                                                            int out, const GrVoxelBox* box,
+                                                            const GrPeGeometry* pe,
+                                                            const GrPacketOutput* o,
+                                                            GrCullFrame cull, int seg_cull) {
+  const int interrupt = o->interrupt;
   /* One result buffer (one map on the host; gridrt_types.h): t, prim, u, v planes of
-   * `lanes` each, then one GrPacketMasks per packet. */
+   * `lanes_total` each, then one GrPacketMasks per packet. */
   __global GrPacketMasks* masks =
-      (__global GrPacketMasks*)(results + GR_BUNDLE_RESULT_PLANES * (size_t)lanes);
+      (__global GrPacketMasks*)(o->results + GR_BUNDLE_RESULT_PLANES * (size_t)o->lanes_total);
   /* Padding has a zero direction and never pierces. */
   in_task &= (r->dx != 0.0f) | (r->dy != 0.0f) | (r->dz != 0.0f);
 
   float16 t_enter = tmin, t_exit = tmax;
-  gr_slab16(r->ox, r->dx, 1.0f / r->dx, lox, hix, &t_enter, &t_exit);
-  gr_slab16(r->oy, r->dy, 1.0f / r->dy, loy, hiy, &t_enter, &t_exit);
-  gr_slab16(r->oz, r->dz, 1.0f / r->dz, loz, hiz, &t_enter, &t_exit);
+  gr_slab16(r->ox, r->dx, 1.0f / r->dx, box->lox, box->hix, &t_enter, &t_exit);
+  gr_slab16(r->oy, r->dy, 1.0f / r->dy, box->loy, box->hiy, &t_enter, &t_exit);
+  gr_slab16(r->oz, r->dz, 1.0f / r->dz, box->loz, box->hiz, &t_enter, &t_exit);
   int16 pierced = in_task & (t_enter <= t_exit);
   int16 active = pierced;
   int16 skipped = (int16)0;
   if (interrupt) {
-    int16 key = vload16(0, first_hit_key + first);
+    int16 key = vload16(0, o->first_hit_key + first);
     skipped = pierced & (key < as_int16(t_enter));
     active = pierced & ~skipped;
   }
@@ -84,17 +87,14 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
     GrSegmentPacket seg;
     seg.enabled = 0;
     if (seg_cull) seg = gr_segment_packet16(r, fmax(t_enter, tmin), fmin(t_exit, tmax), active);
-    float16 best_t, best_u, best_v;
-    int16 best_prim;
-    gr_pe_closest16(r, pe_tris, begin, end, tmin, tmax, t_enter, t_exit, active, any_hit, &best_t,
-                    &best_u, &best_v, &best_prim, cull_planes, cull_stride, packet_box,
-                    cull.enabled != 0.0f, &seg, seg_planes, seg_stride, &m.tests);
-    m.hit = gr_store_packet_hits(best_t, best_prim, best_u, best_v, results, (size_t)lanes, out,
-                                 interrupt, first_hit_key, (int16)first + GR_LANE_INDEX16);
+    GrHits16 best;
+    gr_pe_closest16(r, pe, tmin, tmax, t_enter, t_exit, active, o->any_hit, packet_box,
+                    cull.enabled != 0.0f, &seg, &best, &m.tests);
+    m.hit = gr_store_packet_hits(&best, o, out, (int16)first + GR_LANE_INDEX16);
   }
   m.pierced = gr_lane_bits16(pierced);
   m.skipped = gr_lane_bits16(skipped);
-  masks[out / LANES] = m;
+  masks[out / GR_PACKET_LANES] = m;
 }
 
 __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void gridrt_bundles(
@@ -108,24 +108,38 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
   const int voxel = voxel_of_pe[task.pe];
   const int vx = voxel % grid.nx, vy = (voxel / grid.nx) % grid.ny,
             vz = voxel / (grid.nx * grid.ny);
-  const float lox = grid.minx + (float)vx * grid.cellx,
-              hix = grid.minx + (float)(vx + 1) * grid.cellx;
-  const float loy = grid.miny + (float)vy * grid.celly,
-              hiy = grid.miny + (float)(vy + 1) * grid.celly;
-  const float loz = grid.minz + (float)vz * grid.cellz,
-              hiz = grid.minz + (float)(vz + 1) * grid.cellz;
-  const int begin = pe_tri_begin[task.pe], end = pe_tri_begin[task.pe + 1];
-  const int packets = (task.ray_count + LANES - 1) / LANES;
+  GrVoxelBox box;
+  box.lox = grid.minx + (float)vx * grid.cellx;
+  box.hix = grid.minx + (float)(vx + 1) * grid.cellx;
+  box.loy = grid.miny + (float)vy * grid.celly;
+  box.hiy = grid.miny + (float)(vy + 1) * grid.celly;
+  box.loz = grid.minz + (float)vz * grid.cellz;
+  box.hiz = grid.minz + (float)(vz + 1) * grid.cellz;
+  GrPeGeometry pe;
+  pe.tris = pe_tris;
+  pe.begin = pe_tri_begin[task.pe];
+  pe.end = pe_tri_begin[task.pe + 1];
+  pe.cull_planes = cull_planes;
+  pe.cull_stride = cull_stride;
+  pe.seg_planes = seg_planes;
+  pe.seg_stride = seg_stride;
+  GrPacketOutput o;
+  o.results = results;
+  o.lanes_total = lanes;
+  o.first_hit_key = first_hit_key;
+  o.any_hit = any_hit;
+  o.interrupt = interrupt;
+  const int packets = (task.ray_count + GR_PACKET_LANES - 1) / GR_PACKET_LANES;
   /* Packet culling needs a common origin; rays with their own origins use segment
    * culling instead. */
   GrCullFrame no_cull = cull;
   no_cull.enabled = 0.0f;
 
   for (int p = get_local_id(0); p < packets; p += GR_PE_LOCAL_SIZE) {
-    const int first = task.first_ray + p * LANES;
-    const int out = task.out_first + p * LANES;
+    const int first = task.first_ray + p * GR_PACKET_LANES;
+    const int out = task.out_first + p * GR_PACKET_LANES;
     /* Lanes past the task's end read the next rays of the bundle and are masked off. */
-    const int16 in_task = GR_LANE_INDEX16 < (int16)(task.ray_count - p * LANES);
+    const int16 in_task = GR_LANE_INDEX16 < (int16)(task.ray_count - p * GR_PACKET_LANES);
     GrRays16 r;
     r.dx = vload16(0, planes + GR_PLANE_DX * stride + first);
     r.dy = vload16(0, planes + GR_PLANE_DY * stride + first);
@@ -137,10 +151,8 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
       r.oy = common.oy;
       r.oz = common.oz;
       gr_prepare_rays16(&r);
-      gr_bundle_packet(&r, (float16)common.tmin, (float16)common.tmax, in_task, first, out, lox,
-                       hix, loy, hiy, loz, hiz, pe_tris, begin, end, results, lanes, first_hit_key,
-                       any_hit, interrupt, cull, cull_planes, cull_stride, 0, seg_planes,
-                       seg_stride);
+      gr_bundle_packet(&r, (float16)common.tmin, (float16)common.tmax, in_task, first, out, &box,
+                       &pe, &o, cull, 0);
     } else {
       r.ox = vload16(0, planes + GR_PLANE_OX * stride + first);
       r.oy = vload16(0, planes + GR_PLANE_OY * stride + first);
@@ -148,9 +160,7 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
       gr_prepare_rays16(&r);
       gr_bundle_packet(&r, vload16(0, planes + GR_PLANE_TMIN * stride + first),
                        vload16(0, planes + GR_PLANE_TMAX * stride + first), in_task, first, out,
-                       lox, hix, loy, hiy, loz, hiz, pe_tris, begin, end, results, lanes,
-                       first_hit_key, any_hit, interrupt, no_cull, cull_planes, cull_stride, 1,
-                       seg_planes, seg_stride);
+                       &box, &pe, &o, no_cull, 1);
     }
   }
 }

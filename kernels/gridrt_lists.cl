@@ -4,9 +4,9 @@
  * voxel's triangles. Phase 1 of the reduction happens here: each (ray, PE) pair keeps
  * only its closest hit that lies INSIDE the voxel (t_enter <= t <= t_exit). A packet's
  * results go to its own lanes of the result planes (GR_RESULT_*), written whole and only
- * when a lane hits, and its masks to its GrPacketMasks: the hits are few (a few percent of
- * the pairs of secondary rays), and 16 scattered stores per packet, one per pair's slot
- * in the ray-major lists, had cost about a tenth of the kernel.
+ * when a lane hits, and its masks to its GrPacketMasks: the hits are few among the pairs
+ * of secondary rays, and 16 scattered stores per packet, one per pair's slot
+ * in the ray-major lists, had cost a noticeable share of the kernel.
  * Phase 2 (per ray, the smallest t over its PEs: the first PE in list order with a hit
  * holds it) runs on the host.
  *
@@ -18,7 +18,9 @@
 #include "gridrt_types.h"
 #include "pe_closest16.h"
 
-#define LANES 16
+#if GR_PACKET_LANES != 16
+#error "the float16 lanes of this kernel are GR_PACKET_LANES"
+#endif
 
 /* Plane q of a pair packet (gridrt_types.h). */
 inline float16 gr_pair_plane16(__global const float* packet, int q) {
@@ -31,11 +33,11 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
     __global int* first_hit_key, int any_hit, int interrupt, __global const float* seg_planes,
     int seg_stride) {
   GrPeTask task = tasks[get_group_id(0)];
-  int first = get_local_id(0) * LANES;
+  int first = get_local_id(0) * GR_PACKET_LANES;
   if (first >= task.pair_count) return;
-  int lanes = min(LANES, task.pair_count - first);
+  int lanes = min(GR_PACKET_LANES, task.pair_count - first);
   const int packet_index = task.first_packet + get_local_id(0);
-  __global const float* packet = pairs + (size_t)packet_index * (GR_PAIR_PLANES * LANES);
+  __global const float* packet = pairs + (size_t)packet_index * (GR_PAIR_PLANES * GR_PACKET_LANES);
   GrRays16 r16;
   r16.ox = gr_pair_plane16(packet, GR_PAIR_OX);
   r16.oy = gr_pair_plane16(packet, GR_PAIR_OY);
@@ -49,13 +51,14 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
   float16 t_enter = gr_pair_plane16(packet, GR_PAIR_T_ENTER);
   float16 t_exit = gr_pair_plane16(packet, GR_PAIR_T_EXIT);
   const int16 ray16 = as_int16(gr_pair_plane16(packet, GR_PAIR_RAY));
-  int ray_of[LANES];
+  int ray_of[GR_PACKET_LANES];
   vstore16(ray16, 0, ray_of);
   const int16 pierced = GR_LANE_INDEX16 < (int16)lanes;
   int16 active = pierced, skipped = (int16)0;
   if (interrupt) {
-    int key[LANES];
-    for (int k = 0; k < LANES; ++k) key[k] = k < lanes ? first_hit_key[ray_of[k]] : INT_MAX;
+    int key[GR_PACKET_LANES];
+    for (int k = 0; k < GR_PACKET_LANES; ++k)
+      key[k] = k < lanes ? first_hit_key[ray_of[k]] : INT_MAX;
     skipped = pierced & (vload16(0, key) < as_int16(t_enter));
     active = pierced & ~skipped;
   }
@@ -63,7 +66,7 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
   __global int* out_ray = (__global int*)(results + GR_RESULT_RAY * all_lanes);
   __global GrPacketMasks* masks =
       (__global GrPacketMasks*)(results + GR_LIST_RESULT_PLANES * all_lanes);
-  const int out = packet_index * LANES;
+  const int out = packet_index * GR_PACKET_LANES;
   GrPacketMasks m;
   m.pierced = gr_lane_bits16(pierced);
   m.hit = 0;
@@ -73,14 +76,24 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
     /* The list path's rays have their own origins: segment culling. */
     const GrSegmentPacket seg =
         gr_segment_packet16(&r16, fmax(t_enter, tmin), fmin(t_exit, tmax), active);
-    float16 best_t, best_u, best_v;
-    int16 best_prim;
-    gr_pe_closest16(&r16, pe_tris, pe_tri_begin[task.pe], pe_tri_begin[task.pe + 1], tmin, tmax,
-                    t_enter, t_exit, active, any_hit, &best_t, &best_u, &best_v, &best_prim,
-                    (__global const float*)0, 0, (float4)0.0f, 0, &seg, seg_planes, seg_stride,
-                    &m.tests);
-    m.hit = gr_store_packet_hits(best_t, best_prim, best_u, best_v, results, all_lanes, out,
-                                 interrupt, first_hit_key, ray16);
+    GrPeGeometry pe;
+    pe.tris = pe_tris;
+    pe.begin = pe_tri_begin[task.pe];
+    pe.end = pe_tri_begin[task.pe + 1];
+    pe.cull_planes = (__global const float*)0; /* no packet culling on this path */
+    pe.cull_stride = 0;
+    pe.seg_planes = seg_planes;
+    pe.seg_stride = seg_stride;
+    GrPacketOutput o;
+    o.results = results;
+    o.lanes_total = lanes_total;
+    o.first_hit_key = first_hit_key;
+    o.any_hit = any_hit;
+    o.interrupt = interrupt;
+    GrHits16 best;
+    gr_pe_closest16(&r16, &pe, tmin, tmax, t_enter, t_exit, active, any_hit, (float4)0.0f, 0, &seg,
+                    &best, &m.tests);
+    m.hit = gr_store_packet_hits(&best, &o, out, ray16);
   }
   if (m.hit | m.skipped) vstore16(ray16, 0, out_ray + out);
   masks[packet_index] = m;

@@ -214,8 +214,8 @@ def run_peer_whitted(args, frames, packet):
     """embree_peer --whitted: gridrt's renderer with Embree tracing, its figures under the
     names gridrt's statistics use (trace_primary_ms, ...)."""
     s = run_peer(args + ["--whitted"], frames, packet)
-    for kind in RAY_KINDS:
-        s[f"trace_{kind}_ms"] = s[f"{kind}_ms"]
+    for key, value in s.get("trace", {}).items():
+        s["trace_" + key] = value
     return s
 
 

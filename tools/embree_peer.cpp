@@ -136,11 +136,15 @@ int runCameraRays(const PeerOptions& o, const Scene& scene, const Camera& camera
     for (size_t p = 0; p < hits.size(); ++p) depth[p] = hits[p].prim >= 0 ? hits[p].t : -1.0f;
     writeAov(o.depth_path, o.width, o.height, 1, depth);
   }
-  std::printf(
-      "{\"build_ms\": %.4f, \"frame_ms\": %.4f, \"mrays_per_s\": %.4f, \"rays\": %zu, "
-      "\"hits\": %lld, \"threads\": %d, \"packet\": %d, \"triangles\": %zu}\n",
-      embree.buildMs(), frame_median, rays.size() / (frame_median * 1e3), rays.size(), count,
-      o.threads, o.packet, scene.triangleCount());
+  const nlohmann::json stats = {{"build_ms", embree.buildMs()},
+                                {"frame_ms", frame_median},
+                                {"mrays_per_s", rays.size() / (frame_median * 1e3)},
+                                {"rays", rays.size()},
+                                {"hits", count},
+                                {"threads", o.threads},
+                                {"packet", o.packet},
+                                {"triangles", scene.triangleCount()}};
+  std::printf("%s\n", stats.dump().c_str());
   return 0;
 }
 
@@ -154,26 +158,21 @@ int runWhitted(const PeerOptions& o, const Scene& scene, const Camera& camera,
   settings.want_aovs = false;
   Renderer renderer(scene, camera, embree, settings);
   Frame frame;
-  std::vector<double> frame_ms, shade_ms, primary_ms, secondary_ms, shadow_ms;
+  FramePhaseTimes phases;
   for (int f = 0; f <= o.frames; ++f) {  // frame 0 warms up
     renderer.render(frame);
-    if (f == 0) continue;
-    frame_ms.push_back(frame.times.frame_ms);
-    shade_ms.push_back(frame.times.shade_ms);
-    primary_ms.push_back(frame.times.primary_ms);
-    secondary_ms.push_back(frame.times.secondary_ms);
-    shadow_ms.push_back(frame.times.shadow_ms);
+    if (f > 0) phases.add(frame.times);
   }
   if (!o.output.empty()) writeImage(o.output, frame.film);
-  const double frame_median = median(frame_ms);
-  const uint64_t rays = frame.rays.total();
-  std::printf(
-      "{\"build_ms\": %.4f, \"frame_ms\": %.4f, \"fps\": %.4f, \"mrays_per_s\": %.4f, "
-      "\"rays\": %llu, \"shade_ms\": %.4f, \"primary_ms\": %.4f, \"secondary_ms\": %.4f, "
-      "\"shadow_ms\": %.4f, \"threads\": %d, \"packet\": %d, \"triangles\": %zu}\n",
-      embree.buildMs(), frame_median, 1e3 / frame_median, rays / (frame_median * 1e3),
-      (unsigned long long)rays, median(shade_ms), median(primary_ms), median(secondary_ms),
-      median(shadow_ms), o.threads, o.packet, scene.triangleCount());
+  // gridrt's frame figures (frame_statistics.h), and the peer's own.
+  nlohmann::json stats = frameStatistics(phases, frame.rays);
+  stats["fps"] = 1e3 / stats["frame_ms"].get<double>();
+  stats["build_ms"] = embree.buildMs();
+  stats["rays"] = frame.rays.total();
+  stats["threads"] = o.threads;
+  stats["packet"] = o.packet;
+  stats["triangles"] = scene.triangleCount();
+  std::printf("%s\n", stats.dump().c_str());
   return 0;
 }
 

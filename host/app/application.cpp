@@ -190,8 +190,8 @@ RenderSettings renderSettings(const Options& o) {
 
 // Per-frame timings of the timed frames, and the intersector counters of the first.
 struct FrameTimings {
-  std::vector<double> frame_ms, kernel_ms, shade_ms, lists_ms, reduce_ms, intersect_ms;
-  std::vector<double> primary_ms, secondary_ms, shadow_ms;  // intersect_ms by ray kind
+  FramePhaseTimes phases;
+  std::vector<double> kernel_ms, lists_ms, reduce_ms;
   IntersectCounters first_frame_counters;
 };
 
@@ -212,12 +212,7 @@ FrameTimings renderFrames(const Options& o, Renderer& renderer, Intersector& int
       t.first_frame_counters = after;
       if (o.repeat > 0) continue;
     }
-    t.frame_ms.push_back(frame.times.frame_ms);
-    t.shade_ms.push_back(frame.times.shade_ms);
-    t.intersect_ms.push_back(frame.times.intersectMs());
-    t.primary_ms.push_back(frame.times.primary_ms);
-    t.secondary_ms.push_back(frame.times.secondary_ms);
-    t.shadow_ms.push_back(frame.times.shadow_ms);
+    t.phases.add(frame.times);
     t.kernel_ms.push_back(after.kernel_ms - before.kernel_ms);
     t.lists_ms.push_back(after.lists_ms - before.lists_ms);
     t.reduce_ms.push_back(after.reduce_ms - before.reduce_ms);
@@ -334,9 +329,9 @@ int runApplication(const Options& given) {
 
   writeOutputs(o, frame);
 
-  double median_frame = median(t.frame_ms);
+  double median_frame = median(t.phases.frame_ms);
   uint64_t total_rays = frame.rays.total();
-  nlohmann::json stats;
+  nlohmann::json stats = frameStatistics(t.phases, frame.rays);
   stats["device"] = runtime.info().name;
   stats["scene"] = o.scene.empty() ? "(default scene)" : o.scene;
   stats["triangles"] = scene.triangleCount();
@@ -351,7 +346,7 @@ int runApplication(const Options& given) {
   stats["aa"] = o.adaptive_aa ? "adaptive" : "uniform";
   stats["refined_pixels"] = frame.refined_pixels;
   stats["passes"] = frame.passes;
-  stats["frames_timed"] = t.frame_ms.size();
+  stats["frames_timed"] = t.phases.frame_ms.size();
   stats["rays"] = {{"primary", frame.rays.primary},
                    {"shadow", frame.rays.shadow},
                    {"reflection", frame.rays.reflection},
@@ -365,22 +360,7 @@ int runApplication(const Options& given) {
   stats["lists_ms"] = median(t.lists_ms);
   stats["kernel_ms"] = median(t.kernel_ms);
   stats["reduce_ms"] = median(t.reduce_ms);
-  stats["intersect_ms"] = median(t.intersect_ms);
-  // The tracing time by ray kind, with what a ray of each kind cost (each a median).
-  auto perRay = [](double ms, uint64_t rays) { return rays ? ms * 1e6 / double(rays) : 0.0; };
-  const double primary_ms = median(t.primary_ms), secondary_ms = median(t.secondary_ms),
-               shadow_ms = median(t.shadow_ms);
-  stats["trace"] = {
-      {"primary_ms", primary_ms},
-      {"secondary_ms", secondary_ms},
-      {"shadow_ms", shadow_ms},
-      {"primary_ns_per_ray", perRay(primary_ms, frame.rays.primary)},
-      {"secondary_ns_per_ray", perRay(secondary_ms, frame.rays.reflection + frame.rays.refraction)},
-      {"shadow_ns_per_ray", perRay(shadow_ms, frame.rays.shadow)}};
-  stats["shade_ms"] = median(t.shade_ms);
   stats["generate_ms"] = frame.times.generate_ms;  // primary rays of the last frame
-  stats["frame_ms"] = median_frame;
-  stats["mrays_per_s"] = median_frame > 0 ? total_rays / (median_frame * 1e3) : 0.0;
   const IntersectCounters& c = t.first_frame_counters;
   stats["tests_per_ray"] = c.rays ? double(c.tests) / double(c.rays) : 0.0;
   stats["tests_run_per_ray"] = c.rays ? double(c.tests_run) / double(c.rays) : 0.0;

@@ -18,6 +18,34 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+void FramePhaseTimes::add(const FrameTimes& times) {
+  frame_ms.push_back(times.frame_ms);
+  shade_ms.push_back(times.shade_ms);
+  intersect_ms.push_back(times.intersectMs());
+  primary_ms.push_back(times.primary_ms);
+  secondary_ms.push_back(times.secondary_ms);
+  shadow_ms.push_back(times.shadow_ms);
+}
+
+nlohmann::json frameStatistics(const FramePhaseTimes& phases, const RayCounts& rays) {
+  auto perRay = [](double ms, uint64_t count) { return count ? ms * 1e6 / double(count) : 0.0; };
+  const double frame_ms = median(phases.frame_ms), primary_ms = median(phases.primary_ms),
+               secondary_ms = median(phases.secondary_ms), shadow_ms = median(phases.shadow_ms);
+  nlohmann::json stats;
+  stats["frame_ms"] = frame_ms;
+  stats["mrays_per_s"] = frame_ms > 0 ? rays.total() / (frame_ms * 1e3) : 0.0;
+  stats["shade_ms"] = median(phases.shade_ms);
+  stats["intersect_ms"] = median(phases.intersect_ms);
+  stats["trace"] = {
+      {"primary_ms", primary_ms},
+      {"secondary_ms", secondary_ms},
+      {"shadow_ms", shadow_ms},
+      {"primary_ns_per_ray", perRay(primary_ms, rays.primary)},
+      {"secondary_ns_per_ray", perRay(secondary_ms, rays.reflection + rays.refraction)},
+      {"shadow_ns_per_ray", perRay(shadow_ms, rays.shadow)}};
+  return stats;
+}
+
 namespace {
 void flatten(const nlohmann::json& j, const std::string& prefix,
              std::vector<std::pair<std::string, std::string>>& rows) {

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "renderer.h"
+
 namespace gridrt {
 
 double median(std::vector<double> values);
@@ -24,6 +26,17 @@ MeanMax meanMax(const std::vector<T>& values) {
   if (!values.empty()) m.mean /= double(values.size());
   return m;
 }
+
+// The phases of the timed frames, one entry a frame (the warm-up frame left out).
+struct FramePhaseTimes {
+  std::vector<double> frame_ms, shade_ms, intersect_ms, primary_ms, secondary_ms, shadow_ms;
+  void add(const FrameTimes& times);
+};
+
+// The figures of a run's frames as gridrt's statistics and the Embree peer's name them,
+// built here only: the medians of frame_ms, shade_ms and intersect_ms, mrays_per_s, and
+// "trace" (tracing time by ray kind and what a ray of each kind cost).
+nlohmann::json frameStatistics(const FramePhaseTimes& phases, const RayCounts& rays);
 
 // A readable two-column table of the JSON statistics (nested keys joined by '.').
 std::string formatStatisticsTable(const nlohmann::json& stats);

@@ -6,14 +6,14 @@
 namespace gridrt {
 
 namespace {
-constexpr int kLanes = 16;     // rays per work-item (float16)
 constexpr int kLocalSize = 8;  // work-items per work-group: fixed, so PoCL compiles once
 }  // namespace
 
 BruteIntersector::BruteIntersector(ClRuntime& runtime, const std::vector<GrTriangle>& triangles,
                                    const KernelOptions& kernel_options)
     : rt_(runtime), triangle_count_(int(triangles.size())) {
-  kernel_ = cl::Kernel(rt_.program("brute.cl", kernel_options.defines()), "brute_intersect");
+  kernel_ =
+      KernelCall<KernelArgs>(rt_.program("brute.cl", kernel_options.defines()), "brute_intersect");
   checkTriangleLayout(triangles, kernel_options);
   triangles_.uploadNow(rt_, triangles);
 }
@@ -27,16 +27,16 @@ void BruteIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
     rt_.runWithHostThreadsAsleep([&] {
       rays_.upload(rt_, rays);
       hits_.reserve(rt_, n);
-      kernel_.setArg(0, rays_.get());
-      kernel_.setArg(1, int(n));
-      kernel_.setArg(2, triangles_.get());
-      kernel_.setArg(3, triangle_count_);
-      kernel_.setArg(4, mode == HitMode::AnyHit ? 1 : 0);
-      kernel_.setArg(5, hits_.get());
-      size_t items = (n + kLanes - 1) / kLanes;
+      KernelArgs args;
+      args.rays = rays_.get();
+      args.ray_count = int(n);
+      args.tris = triangles_.get();
+      args.tri_count = triangle_count_;
+      args.any_hit = mode == HitMode::AnyHit ? 1 : 0;
+      args.hits = hits_.get();
+      size_t items = (n + GR_PACKET_LANES - 1) / GR_PACKET_LANES;
       size_t global = (items + kLocalSize - 1) / kLocalSize * kLocalSize;
-      rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global),
-                                       cl::NDRange(kLocalSize));
+      kernel_.enqueue(rt_.queue(), cl::NDRange(global), cl::NDRange(kLocalSize), args);
       hits_.download(rt_, hits.data(), n);
     });
   }

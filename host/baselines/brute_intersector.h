@@ -4,6 +4,7 @@
 #include "cl_runtime.h"
 #include "device_buffer.h"
 #include "intersector.h"
+#include "kernel_call.h"
 
 namespace gridrt {
 
@@ -16,8 +17,19 @@ class BruteIntersector : public Intersector {
                  RayDiagnostics* diagnostics) override;
 
  private:
+  // brute.cl's brute_intersect.
+  struct KernelArgs {
+    cl::Buffer rays;
+    int ray_count;
+    cl::Buffer tris;
+    int tri_count;
+    int any_hit;
+    cl::Buffer hits;
+    auto inOrder() const { return std::tie(rays, ray_count, tris, tri_count, any_hit, hits); }
+  };
+
   ClRuntime& rt_;
-  cl::Kernel kernel_;
+  KernelCall<KernelArgs> kernel_;
   int triangle_count_;
   DeviceBuffer<GrTriangle> triangles_{"the triangle buffer", CL_MEM_READ_ONLY};
   DeviceBuffer<GrRay> rays_{"the ray batch", CL_MEM_READ_ONLY};

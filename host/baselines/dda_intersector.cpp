@@ -13,7 +13,8 @@ constexpr int kLocalSize = 64;  // work-items per work-group: fixed, so PoCL com
 DdaIntersector::DdaIntersector(ClRuntime& runtime, const UniformGrid& grid,
                                const KernelOptions& kernel_options)
     : rt_(runtime), grid_(grid) {
-  kernel_ = cl::Kernel(rt_.program("dda.cl", kernel_options.defines()), "dda_intersect");
+  kernel_ =
+      KernelCall<KernelArgs>(rt_.program("dda.cl", kernel_options.defines()), "dda_intersect");
   checkTriangleLayout(grid.pe_triangles, kernel_options);
   pe_of_voxel_.uploadNow(rt_, grid.pe_of_voxel);
   pe_tri_begin_.uploadNow(rt_, grid.pe_tri_begin);
@@ -31,18 +32,18 @@ void DdaIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
       rays_.upload(rt_, rays);
       hits_.reserve(rt_, n);
       tests_.reserve(rt_, n);
-      kernel_.setArg(0, rays_.get());
-      kernel_.setArg(1, int(n));
-      kernel_.setArg(2, grid_.info);
-      kernel_.setArg(3, pe_of_voxel_.get());
-      kernel_.setArg(4, pe_tri_begin_.get());
-      kernel_.setArg(5, pe_triangles_.get());
-      kernel_.setArg(6, mode == HitMode::AnyHit ? 1 : 0);
-      kernel_.setArg(7, hits_.get());
-      kernel_.setArg(8, tests_.get());
+      KernelArgs args;
+      args.rays = rays_.get();
+      args.ray_count = int(n);
+      args.grid = grid_.info;
+      args.pe_of_voxel = pe_of_voxel_.get();
+      args.pe_tri_begin = pe_tri_begin_.get();
+      args.pe_tris = pe_triangles_.get();
+      args.any_hit = mode == HitMode::AnyHit ? 1 : 0;
+      args.hits = hits_.get();
+      args.tests = tests_.get();
       size_t global = (n + kLocalSize - 1) / kLocalSize * kLocalSize;
-      rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global),
-                                       cl::NDRange(kLocalSize));
+      kernel_.enqueue(rt_.queue(), cl::NDRange(global), cl::NDRange(kLocalSize), args);
       hits_.download(rt_, hits.data(), n);
       tests_.download(rt_, tests_host_.data(), n);
     });

@@ -4,6 +4,7 @@
 #include "cl_runtime.h"
 #include "device_buffer.h"
 #include "intersector.h"
+#include "kernel_call.h"
 #include "uniform_grid.h"
 
 namespace gridrt {
@@ -19,7 +20,20 @@ class DdaIntersector : public Intersector {
  private:
   ClRuntime& rt_;
   const UniformGrid& grid_;
-  cl::Kernel kernel_;
+  // dda.cl's dda_intersect.
+  struct KernelArgs {
+    cl::Buffer rays;
+    int ray_count;
+    GrGridInfo grid;
+    cl::Buffer pe_of_voxel, pe_tri_begin, pe_tris;
+    int any_hit;
+    cl::Buffer hits, tests;
+    auto inOrder() const {
+      return std::tie(rays, ray_count, grid, pe_of_voxel, pe_tri_begin, pe_tris, any_hit, hits,
+                      tests);
+    }
+  };
+  KernelCall<KernelArgs> kernel_;
   DeviceBuffer<int> pe_of_voxel_{"the voxel map", CL_MEM_READ_ONLY};
   DeviceBuffer<int> pe_tri_begin_{"the PE offsets", CL_MEM_READ_ONLY};
   DeviceBuffer<GrTriangle> pe_triangles_{"the PE triangles", CL_MEM_READ_ONLY};

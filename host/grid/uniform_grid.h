@@ -14,11 +14,9 @@ namespace gridrt {
 // triangles per voxel volume; tune with --grid-density. Cleary & Wyvill and pbrt-v1
 // recommend 3..5, but with packet culling a triangle a packet cannot hit costs a compare,
 // so fewer, fuller voxels (fewer packets) win on the camera path; the list path (no
-// culling) prefers finer voxels. Measured (frame ms, medians of settings alternated in
-// one loop), lambda 4 -> 0.5: bunny 1280x960 primary 77 -> 62, teapot 70 -> 56, bunny
-// Whitted 640x480 84 -> 59, default scene within noise; then lambda 0.5 -> 0.1: bunny
-// 1280x960 primary 41.9 -> 37.4, bunny_res4 320x240 2.95 -> 2.79, bunny Whitted 45.9 ->
-// 39.8, teapot 42.9 -> 42.8, default scene 145 -> 144 (0.05 makes it 159).
+// culling) prefers finer voxels. Measured with settings alternated in one loop: going
+// down from 4 to 0.5 and then to 0.1 made the bunny and teapot frames faster and left the
+// default scene within noise; 0.05 makes the default scene slower (docs/history.md).
 constexpr float kDefaultGridDensity = 0.1f;
 
 // The grid box is the scene box grown by a margin, and every voxel is tested for overlap

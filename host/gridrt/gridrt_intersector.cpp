@@ -54,6 +54,19 @@ struct PacketResults {
       if (winner) *winner = pe;
     }
   }
+  // Phase 2 for the lanes of `hit_bits` of one packet of PE `pe`, whose lane 0 is result
+  // lane `first`: each lane's ray (ray_of(lane); -1 for a ray another thread reduces)
+  // keeps the nearer of its hit and the lane's (keepNearer); winners may be null.
+  template <typename RayOfLane>
+  void reduceHits(int hit_bits, size_t first, int pe, RayOfLane ray_of, std::vector<GrHit>& hits,
+                  std::vector<int>* winners) const {
+    for (int bits = hit_bits; bits; bits &= bits - 1) {
+      const int lane = __builtin_ctz(unsigned(bits));
+      const int ray = ray_of(lane);
+      if (ray >= 0)
+        keepNearer(first + size_t(lane), pe, hits[ray], winners ? &(*winners)[ray] : nullptr);
+    }
+  }
 };
 
 }  // namespace
@@ -63,8 +76,9 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
     : rt_(runtime), grid_(grid), interrupt_(interrupt) {
   const std::string defines = "-DGR_PE_LOCAL_SIZE=" + std::to_string(kPeLocalSize) + " " +
                               segmentCullDefines() + " " + kernel_options.defines();
-  kernel_ = cl::Kernel(rt_.program("gridrt_lists.cl", defines), "gridrt_lists");
-  bundle_kernel_ = cl::Kernel(rt_.program("gridrt_bundles.cl", defines), "gridrt_bundles");
+  kernel_ = KernelCall<ListsKernelArgs>(rt_.program("gridrt_lists.cl", defines), "gridrt_lists");
+  bundle_kernel_ =
+      KernelCall<BundlesKernelArgs>(rt_.program("gridrt_bundles.cl", defines), "gridrt_bundles");
   checkTriangleLayout(grid.pe_triangles, kernel_options);
   pe_tri_begin_.uploadNow(rt_, grid.pe_tri_begin);
   voxel_of_pe_.uploadNow(rt_, grid.voxel_of_pe);
@@ -79,7 +93,7 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
 
 void GridRtIntersector::runPes(size_t n, HitMode mode) {
   const std::vector<GrPeTask>& tasks = bins_.tasks;
-  const size_t lanes = bins_.packets * kPeLanes;
+  const size_t lanes = bins_.packets * GR_PACKET_LANES;
   const size_t result_floats = GR_LIST_RESULT_PLANES * lanes + 4 * bins_.packets;
   rt_.runWithHostThreadsAsleep([&] {
     enqueueUnmaps();
@@ -90,20 +104,20 @@ void GridRtIntersector::runPes(size_t n, HitMode mode) {
     first_hit_key_.reserve(rt_, n);
     if (allInterrupt())
       rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, n * sizeof(int));
-    kernel_.setArg(0, tasks_.get());
-    kernel_.setArg(1, entries_.get());
-    kernel_.setArg(2, pe_tri_begin_.get());
-    kernel_.setArg(3, pe_triangles_.get());
-    kernel_.setArg(4, results_.get());
-    kernel_.setArg(5, int(lanes));
-    kernel_.setArg(6, first_hit_key_.get());
-    kernel_.setArg(7, mode == HitMode::AnyHit ? 1 : 0);
-    kernel_.setArg(8, allInterrupt() ? 1 : 0);
-    kernel_.setArg(9, seg_planes_.get());
-    kernel_.setArg(10, seg_stride_);
-    rt_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
-                                     cl::NDRange(tasks.size() * kPeLocalSize),
-                                     cl::NDRange(kPeLocalSize));
+    ListsKernelArgs args;
+    args.tasks = tasks_.get();
+    args.pairs = entries_.get();
+    args.pe_tri_begin = pe_tri_begin_.get();
+    args.pe_tris = pe_triangles_.get();
+    args.results = results_.get();
+    args.lanes_total = int(lanes);
+    args.first_hit_key = first_hit_key_.get();
+    args.any_hit = mode == HitMode::AnyHit ? 1 : 0;
+    args.interrupt = allInterrupt() ? 1 : 0;
+    args.seg_planes = seg_planes_.get();
+    args.seg_stride = seg_stride_;
+    kernel_.enqueue(rt_.queue(), cl::NDRange(tasks.size() * kPeLocalSize),
+                    cl::NDRange(kPeLocalSize), args);
     results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
     // Mapped again for the next batch's pairs once the kernel has read them.
     entries_map_ =
@@ -188,7 +202,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
     diagnostics->winning_pe.assign(n, -1);
     diagnostics->list_length.assign(n, 0);
   }
-  const PacketResults results(results_map_, bins_.packets * kPeLanes, GR_LIST_RESULT_PLANES);
+  const PacketResults results(results_map_, bins_.packets * GR_PACKET_LANES, GR_LIST_RESULT_PLANES);
   const std::vector<GrPeTask>& tasks = bins_.tasks;
   uint64_t tests = 0, tests_run = 0, skipped = 0, longest = 0;
 #pragma omp parallel reduction(+ : tests, tests_run, skipped) reduction(max : longest)
@@ -210,7 +224,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
     for (size_t k = 0; k < tasks.size(); ++k) {
       const GrPeTask& task = tasks[k];
       const int cost = grid_.triangleCountOfPe(task.pe);
-      const int packets = (task.pair_count + kPeLanes - 1) / kPeLanes;
+      const int packets = (task.pair_count + GR_PACKET_LANES - 1) / GR_PACKET_LANES;
       for (int p = task.first_packet; p < task.first_packet + packets; ++p) {
         const GrPacketMasks& m = results.masks[p];
         if (int(k % size_t(count)) == me) {
@@ -218,18 +232,19 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
           tests_run += uint64_t(m.tests);
           skipped += popcount(m.skipped);
         }
-        for (int bits = m.hit | (diagnostics ? m.skipped : 0); bits; bits &= bits - 1) {
-          const int lane = __builtin_ctz(unsigned(bits));
-          const size_t at = size_t(p) * kPeLanes + lane;
-          const int ray = results.ray[at];
-          if (ray < lo || ray >= hi) continue;
-          if (m.skipped & (1 << lane)) {
-            diagnostics->tests[ray] -= cost;
-            continue;
+        // The rays of this thread's range, by lane (the pairs carry their rays).
+        const size_t first = size_t(p) * GR_PACKET_LANES;
+        auto rayOfLane = [&](int lane) {
+          const int ray = results.ray[first + size_t(lane)];
+          return ray >= lo && ray < hi ? ray : -1;
+        };
+        if (diagnostics)
+          for (int bits = m.skipped; bits; bits &= bits - 1) {
+            const int ray = rayOfLane(__builtin_ctz(unsigned(bits)));
+            if (ray >= 0) diagnostics->tests[ray] -= cost;
           }
-          results.keepNearer(at, task.pe, hits[ray],
-                             diagnostics ? &diagnostics->winning_pe[ray] : nullptr);
-        }
+        results.reduceHits(m.hit & ~m.skipped, first, task.pe, rayOfLane, hits,
+                           diagnostics ? &diagnostics->winning_pe : nullptr);
       }
     }
   }
@@ -330,7 +345,8 @@ void GridRtIntersector::generateAndIntersectPrimary(const PinholeView& view,
           const size_t b0 = size_t(ty) * band_slots + size_t(ly) * kTileSize;
           for (int tx = 0; tx < tiles_x; ++tx)
             for (int lx = 0; lx < kTileSize; ++lx) {
-              const size_t b = b0 + size_t(tx) * kBundleLanes + lx, x = size_t(tx) * kTileSize + lx;
+              const size_t b = b0 + size_t(tx) * GR_PACKET_LANES + lx,
+                           x = size_t(tx) * kTileSize + lx;
               dx[b] = rdx[x];
               dy[b] = rdy[x];
               dz[b] = rdz[x];
@@ -355,7 +371,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   hits.resize(n);
   const size_t slots = bundles.ray_of.size();
   // A packet may read up to 15 rays past its task's end: one packet of padding.
-  const size_t stride = slots + kBundleLanes;
+  const size_t stride = slots + GR_PACKET_LANES;
   Stopwatch clock;
 
   // Phase 1: the rays in bundle order, as planes, straight into the device buffer: the
@@ -420,7 +436,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       writeStarts(b, r >= 0 ? rays[r] : common);
     }
   }
-  const size_t lanes = bundles.out_lanes, packets = lanes / kBundleLanes;
+  const size_t lanes = bundles.out_lanes, packets = lanes / GR_PACKET_LANES;
   rt_.runWithHostThreadsAsleep([&] {
     enqueueUnmaps();
     enqueuePlanesUnmap();
@@ -432,33 +448,29 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     first_hit_key_.reserve(rt_, stride);
     if (interrupt)
       rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, stride * sizeof(int));
-    cl::Kernel& k = bundle_kernel_;
-    k.setArg(0, bundle_tasks_.get());
-    k.setArg(1, planes_.get());
-    int arg = 2;
-    k.setArg(arg++, int(stride));
-    k.setArg(arg++, common_origin ? 1 : 0);
-    k.setArg(arg++, common);
-    k.setArg(arg++, grid_.info);
-    k.setArg(arg++, voxel_of_pe_.get());
-    k.setArg(arg++, pe_tri_begin_.get());
-    k.setArg(arg++, pe_triangles_.get());
-    k.setArg(arg++, results_.get());
-    k.setArg(arg++, int(lanes));
-    k.setArg(arg++, first_hit_key_.get());
-    k.setArg(arg++, mode == HitMode::AnyHit ? 1 : 0);
-    k.setArg(arg++, interrupt ? 1 : 0);
-    const GrCullFrame culling =
-        prepareCulling(check_cover && uncovered == 0 && common_origin, frame, common);
-    packet_culling_used_ = culling.enabled != 0.0f;
-    k.setArg(arg++, culling);
-    k.setArg(arg++, cull_planes_.reserve(rt_, 1));
-    k.setArg(arg++, int(cull_cache_.stride()));
-    k.setArg(arg++, seg_planes_.get());
-    k.setArg(arg++, seg_stride_);
-    rt_.queue().enqueueNDRangeKernel(k, cl::NullRange,
-                                     cl::NDRange(bundles.tasks.size() * kPeLocalSize),
-                                     cl::NDRange(kPeLocalSize));
+    BundlesKernelArgs args;
+    args.tasks = bundle_tasks_.get();
+    args.planes = planes_.get();
+    args.stride = int(stride);
+    args.common_origin = common_origin ? 1 : 0;
+    args.common = common;
+    args.grid = grid_.info;
+    args.voxel_of_pe = voxel_of_pe_.get();
+    args.pe_tri_begin = pe_tri_begin_.get();
+    args.pe_tris = pe_triangles_.get();
+    args.results = results_.get();
+    args.lanes = int(lanes);
+    args.first_hit_key = first_hit_key_.get();
+    args.any_hit = mode == HitMode::AnyHit ? 1 : 0;
+    args.interrupt = interrupt ? 1 : 0;
+    args.cull = prepareCulling(check_cover && uncovered == 0 && common_origin, frame, common);
+    packet_culling_used_ = args.cull.enabled != 0.0f;
+    args.cull_planes = cull_planes_.reserve(rt_, 1);
+    args.cull_stride = int(cull_cache_.stride());
+    args.seg_planes = seg_planes_.get();
+    args.seg_stride = seg_stride_;
+    bundle_kernel_.enqueue(rt_.queue(), cl::NDRange(bundles.tasks.size() * kPeLocalSize),
+                           cl::NDRange(kPeLocalSize), args);
     results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
     // Mapped again for the next bundle batch once the kernel has read it.
     planes_map_ =
@@ -486,7 +498,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     const int me = omp_get_thread_num(), count = omp_get_num_threads();
     std::vector<int>& pe_pairs = thread_pe_pairs_[me];
     pe_pairs.assign(grid_.peCount(), 0);
-    const size_t chunk = (slots / kBundleLanes + count - 1) / count * kBundleLanes;
+    const size_t chunk = (slots / GR_PACKET_LANES + count - 1) / count * GR_PACKET_LANES;
     const long long lo = (long long)std::min(slots, size_t(me) * chunk);
     const long long hi = (long long)std::min(slots, size_t(lo) + chunk);
     // Every ray a miss to begin with, written in ray order (in bundle order it would be a
@@ -500,14 +512,14 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       const long long last = std::min<long long>(task.first_ray + task.ray_count, hi);
       if (first >= last) continue;
       const int cost = grid_.triangleCountOfPe(task.pe);
-      for (int p = int(first - task.first_ray) / kBundleLanes;
-           p * kBundleLanes < last - task.first_ray; ++p) {
-        const long long base = task.first_ray + p * kBundleLanes;
+      for (int p = int(first - task.first_ray) / GR_PACKET_LANES;
+           p * GR_PACKET_LANES < last - task.first_ray; ++p) {
+        const long long base = task.first_ray + p * GR_PACKET_LANES;
         // The lanes of this packet inside [first, last).
         int in_range = 0xFFFF;
         if (base < first) in_range &= 0xFFFF << int(first - base);
-        if (base + kBundleLanes > last) in_range &= 0xFFFF >> int(base + kBundleLanes - last);
-        const GrPacketMasks& m = results.masks[task.out_first / kBundleLanes + p];
+        if (base + GR_PACKET_LANES > last) in_range &= 0xFFFF >> int(base + GR_PACKET_LANES - last);
+        const GrPacketMasks& m = results.masks[task.out_first / GR_PACKET_LANES + p];
         // A packet's tests count in the thread whose range holds its first lane.
         if (base >= lo) tests_run += uint64_t(m.tests);
         const int pierced = m.pierced & in_range, tested = pierced & ~m.skipped;
@@ -523,13 +535,9 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
             ++diagnostics->list_length[ray];
             if (tested & (1 << k)) diagnostics->tests[ray] += cost;
           }
-        const int out = task.out_first + p * kBundleLanes;
-        for (int bits = m.hit & in_range; bits; bits &= bits - 1) {
-          const int k = __builtin_ctz(unsigned(bits));
-          const int ray = bundles.ray_of[base + k];
-          results.keepNearer(size_t(out + k), task.pe, hits[ray],
-                             winners ? &(*winners)[ray] : nullptr);
-        }
+        results.reduceHits(
+            m.hit & in_range, size_t(task.out_first + p * GR_PACKET_LANES), task.pe,
+            [&](int lane) { return bundles.ray_of[base + lane]; }, hits, winners);
       }
     }
   }

@@ -8,6 +8,7 @@
 #include "cl_runtime.h"
 #include "device_buffer.h"
 #include "intersector.h"
+#include "kernel_call.h"
 #include "light_bundles.h"
 #include "packet_culling.h"
 #include "pe_binning.h"
@@ -18,16 +19,15 @@
 namespace gridrt {
 
 // Work-items per PE work-group (fixed: each new local size is a new compile on PoCL).
-// Each work-item tests 16 rays in float16 lanes, so one task holds up to 64 rays.
+// Each work-item tests one packet (GR_PACKET_LANES rays in float16 lanes), so one task
+// holds up to 64 rays.
 constexpr int kPeLocalSize = 4;
-constexpr int kPeLanes = 16;
-constexpr int kPeTaskRays = kPeLocalSize * kPeLanes;
+constexpr int kPeTaskRays = kPeLocalSize * GR_PACKET_LANES;
 // Fewer shadow rays than this towards one light go through per-ray traversal lists: a
-// sparse cube wastes most packet lanes. Measured on the default scene before segment
-// culling: 2,017 rays cost 4.7 ms as bundles, about 1 ms as lists; 282,407 rays 23 ms as
-// bundles, ~100 ms as lists. With segment culling in both, moving the 11k-21k-ray batches
-// of the secondary hits to bundles took the frame from 136 to 126 ms (A/B medians of 7;
-// 1,024 instead of 8,192 made no difference).
+// sparse cube wastes most packet lanes. On the default scene small batches cost less as
+// lists and large ones far less as bundles; with segment culling in both, the secondary
+// hits' mid-sized batches are faster as bundles, and a lower threshold made no difference
+// (docs/history.md).
 constexpr size_t kMinLightBundleRays = 8192;
 // Light bundles that would test more lanes than this per ray (a light among dense geometry
 // with a fine grid: every near voxel covers a wide cone) also fall back to the lists,
@@ -38,13 +38,12 @@ constexpr size_t kMaxLightBundleLanesPerRay = 64;
 // ray once an earlier PE of the ray's list has a hit. The hits are the same either way.
 enum class PeInterrupt {
   Off,         // none: every PE tests every ray it receives
-  CameraRays,  // camera bundles only (gridrt's default). Measured on an AMD EPYC (AVX2),
-               // alternated with Off: bunny_res4 320x240 primary 2.71 -> 2.40 ms, bunny
-               // 1280x960 primary 54.1 -> 46.8 ms, bunny Whitted 42.5 -> 39.3 ms, the
-               // default Whitted frame 110.9 -> 111.0 ms (its walls are hit in the first PE)
+  CameraRays,  // camera bundles only (gridrt's default): faster than Off on the bunny's
+               // primary and Whitted frames, the same on the default Whitted frame (its
+               // walls are hit in the first PE); docs/history.md
   AllRays,     // every batch (--pe-interrupt): shadow and list batches too. Mixed, so not
-               // the default: Whitted frames 97.1 -> 92.2 ms (default scene) but 33.2 ->
-               // 37.7 ms (bunny) here; slower on the default scene on an AVX-512 Xeon
+               // the default: faster on some Whitted frames, slower on others, and the
+               // balance changes with the machine
 };
 
 class GridRtIntersector : public Intersector {
@@ -92,7 +91,41 @@ class GridRtIntersector : public Intersector {
   ClRuntime& rt_;
   const UniformGrid& grid_;
   PeInterrupt interrupt_;
-  cl::Kernel kernel_;
+  // gridrt_lists.cl's gridrt_lists: the list path's pair packets.
+  struct ListsKernelArgs {
+    cl::Buffer tasks, pairs, pe_tri_begin, pe_tris, results;
+    int lanes_total;
+    cl::Buffer first_hit_key;
+    int any_hit, interrupt;
+    cl::Buffer seg_planes;
+    int seg_stride;
+    auto inOrder() const {
+      return std::tie(tasks, pairs, pe_tri_begin, pe_tris, results, lanes_total, first_hit_key,
+                      any_hit, interrupt, seg_planes, seg_stride);
+    }
+  };
+  // gridrt_bundles.cl's gridrt_bundles: the ray bundles' planes.
+  struct BundlesKernelArgs {
+    cl::Buffer tasks, planes;
+    int stride, common_origin;
+    GrRay common;
+    GrGridInfo grid;
+    cl::Buffer voxel_of_pe, pe_tri_begin, pe_tris, results;
+    int lanes;
+    cl::Buffer first_hit_key;
+    int any_hit, interrupt;
+    GrCullFrame cull;
+    cl::Buffer cull_planes;
+    int cull_stride;
+    cl::Buffer seg_planes;
+    int seg_stride;
+    auto inOrder() const {
+      return std::tie(tasks, planes, stride, common_origin, common, grid, voxel_of_pe, pe_tri_begin,
+                      pe_tris, results, lanes, first_hit_key, any_hit, interrupt, cull, cull_planes,
+                      cull_stride, seg_planes, seg_stride);
+    }
+  };
+  KernelCall<ListsKernelArgs> kernel_;
   TraversalLists lists_;
   PeBins bins_;
   // Phase 1's results, mapped from the device buffers (no copy on a CPU device) for phase
@@ -160,7 +193,7 @@ class GridRtIntersector : public Intersector {
   DeviceBuffer<GrBundleTask> bundle_tasks_{"the bundle tasks", CL_MEM_READ_ONLY};
   // Phase 1's results of either path (GR_RESULT_*): planes per lane, then packet masks.
   DeviceBuffer<float> results_{"the per-PE results", CL_MEM_WRITE_ONLY};
-  cl::Kernel bundle_kernel_;
+  KernelCall<BundlesKernelArgs> bundle_kernel_;
   DeviceBuffer<int> pe_tri_begin_{"the PE offsets", CL_MEM_READ_ONLY};
   DeviceBuffer<GrTriangle> pe_triangles_{"the PE triangles", CL_MEM_READ_ONLY};
   DeviceBuffer<float> entries_{"the PE inputs", CL_MEM_READ_ONLY};

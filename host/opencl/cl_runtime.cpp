@@ -41,9 +41,8 @@ std::string trim(const std::string& s) {
 std::vector<cl::Platform> platformsOrEmpty() {
   // PoCL's CPU device pins its worker threads to cores with POCL_AFFINITY=1 (read when
   // the platform starts); unpinned, they sometimes share a core with each other or with
-  // the host's threads. Measured (A/B medians of 6): bunny_res4 320x240 primary
-  // 4.0 -> 3.1 ms (kernel 2.7 -> 1.7), bunny 1280x960 and the default Whitted frame
-  // unchanged. A value the user set is kept.
+  // the host's threads. Pinned, small primary frames (bunny_res4 320x240) are faster, the
+  // large and Whitted frames unchanged (docs/history.md). A value the user set is kept.
   setenv("POCL_AFFINITY", "1", /*overwrite=*/0);
   std::vector<cl::Platform> platforms;
   try {

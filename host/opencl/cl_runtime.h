@@ -65,9 +65,9 @@ class ClRuntime {
   // command until the last has run. An idle OpenMP worker otherwise spins (libgomp's
   // default spin lasts milliseconds after every parallel region) on the cores the CPU
   // device's threads run the commands on, and now and then holds one of them off for a
-  // time slice. Every device interaction of the intersectors goes through here (default
-  // Whitted frame 110.3 -> 95.7 ms, as fast as GOMP_SPINCOUNT=10000; bunny 1280x960
-  // 43.5 -> 39.3 ms). An exception from `enqueue` is rethrown after the wait.
+  // time slice. Every device interaction of the intersectors goes through here (the
+  // Whitted and large primary frames got faster, as fast as with GOMP_SPINCOUNT=10000;
+  // docs/history.md). An exception from `enqueue` is rethrown after the wait.
   void runWithHostThreadsAsleep(const std::function<void()>& enqueue);
 
  private:

@@ -1,7 +1,7 @@
 // Built OpenCL program binaries kept on disk between runs, so that a later process loads
 // a program instead of compiling it. PoCL has a cache of its own, but to find an entry it
-// preprocesses the source with clang first: ~30 ms a program on a quiet machine, ~60 ms
-// of a 0.5 s render for the two GridRT kernels; loading a binary takes ~5 ms.
+// preprocesses the source with clang first, a noticeable share of a short render for the
+// two GridRT kernels; loading a binary is several times cheaper (docs/history.md).
 //
 // An entry is named by a hash of its key and holds the whole key (the kernel source, the
 // build options, the platform's and device's names and versions) and the binary's length

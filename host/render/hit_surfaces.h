@@ -13,6 +13,8 @@
 
 namespace gridrt {
 
+// Hits shaded at a time: a width of the host's vector registers, independent of the
+// kernels' packets (GR_PACKET_LANES): the hits come in shading order, not by packet.
 constexpr int kSurfaceLanes = 16;
 
 // What interpolating a triangle's vertex normals needs, made once per scene: its first

@@ -452,6 +452,57 @@ bool Renderer::worthTracing(const glm::vec3& weight) const {
 size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
                                  const std::vector<PathRay>* paths, PrimaryPaths primary,
                                  size_t shadow_offset, Frame& frame) {
+  return settings_.primary_only ? shadeHeadlight(depth, rays, primary, shadow_offset, frame)
+                                : shadeWhitted(depth, rays, paths, primary, shadow_offset, frame);
+}
+
+size_t Renderer::shadeHeadlight(int depth, const std::vector<GrRay>& rays, PrimaryPaths primary,
+                                size_t shadow_offset, Frame& frame) {
+  Stopwatch clock;
+  const size_t n = rays.size();
+  Generation& g = generations_[depth];
+  g.radiance.resize(n);
+  std::vector<glm::vec3>& local = g.radiance;
+  // Null without vertex normals (hit_surfaces.h).
+  const ShadingTriangle* smooth_triangles =
+      shading_triangles_.empty() ? nullptr : shading_triangles_.data();
+  // The primary generation only, in ray order. One plain loop: the Whitted loop's per-ray
+  // bookkeeping (paths, shading order, blocks of 16) cost more than this shading does.
+  // With one sample a pixel (pixels distinct, in ray order), each ray's radiance goes
+  // straight into its pixel: the same addition addPassRadiance would make, a pass less.
+  const glm::vec3 weight(primary.weight);
+  const bool into_pixels = primary.spp == 1;
+  g.radiance_in_pixels = into_pixels;
+#pragma omp parallel for schedule(static)
+  for (long long i = 0; i < (long long)n; ++i) {
+    const GrHit& hit = g.hits[i];
+    glm::vec3 value;
+    if (hit.prim < 0) {
+      value = weight * settings_.background;
+    } else {
+      const GrRay& ray = rays[i];
+      const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim,
+                                        ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
+      const glm::vec3& base = scene_.materials[scene_.material_of[hit.prim]].base_color;
+      value = weight * base *
+              std::fabs(glm::dot(glm::vec3(h.nx, h.ny, h.nz), glm::vec3(ray.dx, ray.dy, ray.dz)));
+    }
+    if (into_pixels)
+      radiance_[window_pixels_[i]] += value;
+    else
+      local[i] = value;
+  }
+  frame.times.shade_ms += clock.ms();
+  g.first_shadow = shadow_offset;
+  g.shadow_count = 0;
+  generations_[depth + 1].rays.clear();
+  generations_[depth + 1].paths.clear();
+  return 0;
+}
+
+size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
+                              const std::vector<PathRay>* paths, PrimaryPaths primary,
+                              size_t shadow_offset, Frame& frame) {
   Stopwatch clock;
   const size_t n = rays.size();
   // Each chunk writes its own outputs (Spawned), which keeps the parallel loop free of
@@ -462,42 +513,6 @@ size_t Renderer::shadeGeneration(int depth, const std::vector<GrRay>& rays,
   // Null without vertex normals (hit_surfaces.h).
   const ShadingTriangle* smooth_triangles =
       shading_triangles_.empty() ? nullptr : shading_triangles_.data();
-  if (settings_.primary_only) {
-    // Headlight shading (the paper's measurement): the primary generation only, in ray
-    // order, each hit its base colour times |n . d|; no lights, no spawned rays. One plain
-    // loop: the general loop's per-ray bookkeeping (paths, shading order, blocks of 16)
-    // cost more than this shading does.
-    // With one sample a pixel (pixels distinct, in ray order), each ray's radiance goes
-    // straight into its pixel: the same addition addPassRadiance would make, a pass less.
-    const glm::vec3 weight(primary.weight);
-    const bool into_pixels = primary.spp == 1;
-    g.radiance_in_pixels = into_pixels;
-#pragma omp parallel for schedule(static)
-    for (long long i = 0; i < (long long)n; ++i) {
-      const GrHit& hit = g.hits[i];
-      glm::vec3 value;
-      if (hit.prim < 0) {
-        value = weight * settings_.background;
-      } else {
-        const GrRay& ray = rays[i];
-        const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim,
-                                          ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
-        const glm::vec3& base = scene_.materials[scene_.material_of[hit.prim]].base_color;
-        value = weight * base *
-                std::fabs(glm::dot(glm::vec3(h.nx, h.ny, h.nz), glm::vec3(ray.dx, ray.dy, ray.dz)));
-      }
-      if (into_pixels)
-        radiance_[window_pixels_[i]] += value;
-      else
-        local[i] = value;
-    }
-    frame.times.shade_ms += clock.ms();
-    g.first_shadow = shadow_offset;
-    g.shadow_count = 0;
-    generations_[depth + 1].rays.clear();
-    generations_[depth + 1].paths.clear();
-    return 0;
-  }
   g.radiance_in_pixels = false;
   const bool spawn = depth < settings_.max_depth;
   // Chunks handed out dynamically: the rays' cost varies across the image (background,

@@ -153,9 +153,19 @@ class Renderer {
   // Traces shadow_rays_ into shadow_hits_ (any hit), light by light: rays towards a
   // point or spot light through Intersector::intersectTowardsPoint.
   void traceShadows(double& ms);
+  // Shades generation `depth` (its hits in generations_[depth]): headlight shading with
+  // primary_only, Whitted shading otherwise. Returns the shadow rays it spawned.
   size_t shadeGeneration(int depth, const std::vector<GrRay>& rays,
                          const std::vector<PathRay>* paths, PrimaryPaths primary,
                          size_t shadow_offset, Frame& frame);
+  // Headlight shading (the paper's measurement) of the primary generation: each hit its
+  // base colour times |n . d|; no lights, no spawned rays.
+  size_t shadeHeadlight(int depth, const std::vector<GrRay>& rays, PrimaryPaths primary,
+                        size_t shadow_offset, Frame& frame);
+  // Whitted shading: emission, ambient and direct light (spawning shadow rays), and the
+  // reflection and refraction rays of the next generation below max_depth.
+  size_t shadeWhitted(int depth, const std::vector<GrRay>& rays, const std::vector<PathRay>* paths,
+                      PrimaryPaths primary, size_t shadow_offset, Frame& frame);
   // Adds depths [0, depths) of the pass to radiance_ in the order a depth-by-depth
   // renderer would: each depth's own radiance, then its shadow rays that reached their
   // light (so every pixel's sum is the same, bit for bit).

@@ -43,11 +43,16 @@ typedef struct {
   int nx, ny, nz, pe_count;
 } GrGridInfo; /* 48 bytes */
 
-/* The list path's (ray, PE) pairs, binned per PE, 16 to a packet (a work-item's lanes),
+/* Rays per packet, on both sides: a work-item of every kernel tests one packet in float16
+ * lanes (the kernels' vector types are 16 wide: brute.cl, gridrt_lists.cl and
+ * gridrt_bundles.cl stop on another value), a camera tile is one packet, and the host
+ * bins, bundles and reduces the rays by packet. */
+#define GR_PACKET_LANES 16
+
+/* The list path's (ray, PE) pairs, binned per PE, GR_PACKET_LANES to a packet,
  * each carrying its ray, so a work-item loads its packet, one vload16 per plane, instead
  * of gathering rays: plane q of lane k at gr_pair_value(q, k) (structure of arrays). RAY
  * (the ray's index in the batch) holds int bits. Lanes past a part's last pair are zero. */
-#define GR_PAIR_LANES 16
 #define GR_PAIR_OX 0
 #define GR_PAIR_OY 1
 #define GR_PAIR_OZ 2
@@ -60,7 +65,7 @@ typedef struct {
 #define GR_PAIR_T_EXIT 9  /* ... and where it leaves it */
 #define GR_PAIR_RAY 10
 #define GR_PAIR_PLANES 11
-#define gr_pair_value(q, k) ((q)*GR_PAIR_LANES + (k))
+#define gr_pair_value(q, k) ((q)*GR_PACKET_LANES + (k))
 
 /* One work-group's share of one PE: the pair_count pairs from packet first_packet on
  * (work-item w takes packet first_packet + w, and writes that packet's results). */
@@ -145,6 +150,41 @@ typedef struct {
 #define GR_SEG_REACH 13
 #define GR_SEG_PLANES 14
 
+/* A voxel's box, [lo, hi] on each axis: the slabs a PE kernel tests its packets against. */
+typedef struct {
+  float lox, loy, loz;
+  float hix, hiy, hiz;
+} GrVoxelBox; /* 24 bytes */
+
+#ifdef __OPENCL_C_VERSION__
+/* What the phase-1 loop of a PE reads (kernels only: it holds pointers): the PE's
+ * triangles tris[begin, end), the packet-culling boxes and the segment-culling planes of
+ * every PE triangle (null and 0 where a path has none). */
+typedef struct {
+  __global const GrTriangle* tris;
+  int begin, end;
+  __global const float* cull_planes;
+  int cull_stride;
+  __global const float* seg_planes;
+  int seg_stride;
+} GrPeGeometry;
+
+/* How a packet is tested and where its phase-1 results go: the result planes of
+ * lanes_total lanes (GR_RESULT_*), the interrupt's keys, the hit mode. */
+typedef struct {
+  __global float* results;
+  int lanes_total;
+  __global int* first_hit_key;
+  int any_hit, interrupt;
+} GrPacketOutput;
+
+/* The closest in-voxel hit of each lane of a packet (prim -1: none). */
+typedef struct {
+  float16 t, u, v;
+  int16 prim;
+} GrHits16;
+#endif
+
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(GrRay) == 32, "GrRay layout");
 static_assert(sizeof(GrTriangle) == 48, "GrTriangle layout");
@@ -154,6 +194,7 @@ static_assert(sizeof(GrPeTask) == 16, "GrPeTask layout");
 static_assert(sizeof(GrBundleTask) == 16, "GrBundleTask layout");
 static_assert(sizeof(GrPacketMasks) == 16, "GrPacketMasks layout");
 static_assert(sizeof(GrCullFrame) == 48, "GrCullFrame layout");
+static_assert(sizeof(GrVoxelBox) == 24, "GrVoxelBox layout");
 #endif
 
 #endif

@@ -148,11 +148,15 @@ inline __attribute__((always_inline)) int gr_segment_culled16(const GrSegmentPac
 }
 
 inline __attribute__((always_inline)) void gr_pe_closest16(
-    const GrRays16* r, __global const GrTriangle* tris, int begin, int end, float16 tmin,
-    float16 tmax, float16 t_enter, float16 t_exit, int16 active, int any_hit, float16* best_t_out,
-    float16* best_u_out, float16* best_v_out, int16* best_prim_out,
-    __global const float* cull_planes, int cull_stride, float4 packet_box, int cull,
-    const GrSegmentPacket* seg, __global const float* seg_planes, int seg_stride, int* tests_out) {
+    const GrRays16* r, const GrPeGeometry* pe, float16 tmin, float16 tmax, float16 t_enter,
+    float16 t_exit, int16 active, int any_hit, float4 packet_box, int cull,
+    const GrSegmentPacket* seg, GrHits16* best_out, int* tests_out) {
+  __global const GrTriangle* tris = pe->tris;
+  const int begin = pe->begin, end = pe->end;
+  __global const float* cull_planes = pe->cull_planes;
+  const int cull_stride = pe->cull_stride;
+  __global const float* seg_planes = pe->seg_planes;
+  const int seg_stride = pe->seg_stride;
   int tested = 0;
   float16 best_t = tmax, best_u = 0.0f, best_v = 0.0f;
   int16 best_prim = -1;
@@ -196,10 +200,10 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
       }
     }
   }
-  *best_t_out = best_t;
-  *best_u_out = best_u;
-  *best_v_out = best_v;
-  *best_prim_out = best_prim;
+  best_out->t = best_t;
+  best_out->u = best_u;
+  best_out->v = best_v;
+  best_out->prim = best_prim;
   *tests_out = tested * popcount(gr_lane_bits16(active));
 }
 
@@ -210,9 +214,15 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
  * it starts beyond a hit, so one starting exactly at it (a hit on the shared boundary) still
  * runs and an exact tie there goes to the lower triangle index, whichever PE runs first.
  * Returns the hit mask. */
-inline __attribute__((always_inline)) int gr_store_packet_hits(
-    float16 best_t, int16 best_prim, float16 best_u, float16 best_v, __global float* results,
-    size_t lanes_total, int out, int interrupt, __global int* first_hit_key, int16 key_of) {
+inline __attribute__((always_inline)) int gr_store_packet_hits(const GrHits16* best,
+                                                               const GrPacketOutput* o, int out,
+                                                               int16 key_of) {
+  const float16 best_t = best->t, best_u = best->u, best_v = best->v;
+  const int16 best_prim = best->prim;
+  __global float* results = o->results;
+  const size_t lanes_total = (size_t)o->lanes_total;
+  const int interrupt = o->interrupt;
+  __global int* first_hit_key = o->first_hit_key;
   const int hit = gr_lane_bits16(best_prim >= 0);
   if (!hit) return 0;
   vstore16(best_t, 0, results + GR_RESULT_T * lanes_total + out);

@@ -17,6 +17,7 @@
 #include <tuple>
 #include <vector>
 
+#include "dda_packet.h"
 #include "prepared_triangles.h"
 #include "scene.h"
 #include "traversal_lists.h"
@@ -713,16 +714,11 @@ TEST(TraversalLists, MatchTheDdaWalkFilteredToNonEmptyVoxels) {
   EXPECT_EQ(lists.rayCount(), rays.size() / 2);
 }
 
-// Where methods fail: rays whose components come from the values a DDA trips over (zeros of
-// both signs, subnormals, the smallest normal, huge, infinite, NaN), origins on voxel
-// planes, edges and corners, and odd intervals (negative, empty, NaN). The lists (walked
-// 16 rays at a time where the build has AVX-512, dda_packet.h) must still equal the scalar
-// walk bit for bit.
-TEST(TraversalLists, MatchTheDdaWalkForRaysThatTripDdas) {
-  std::mt19937 rng(29);
+// Rays whose components come from the values a DDA trips over (zeros of both signs,
+// subnormals, the smallest normal, huge, infinite, NaN), origins on voxel planes, edges
+// and corners, and odd intervals (negative, empty, NaN).
+std::vector<GrRay> raysThatTripDdas(std::mt19937& rng, const GrGridInfo& g, int count) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  UniformGrid grid = randomTriangleGrid(rng, 80, {7, 6, 5});
-  const GrGridInfo& g = grid.info;
   const float denorm = std::numeric_limits<float>::denorm_min();
   const float tiny = std::numeric_limits<float>::min();
   const float odd_components[] = {0.0f,   -0.0f, denorm, -denorm, 1e-40f, tiny, -tiny,
@@ -730,7 +726,7 @@ TEST(TraversalLists, MatchTheDdaWalkForRaysThatTripDdas) {
   const float odd_intervals[] = {0.0f, -1.0f, 1e-30f, 0.5f, 2.0f, kInf, -kInf, kNaN};
   auto pick = [&](const float* values, size_t n) { return values[rng() % n]; };
   std::vector<GrRay> rays;
-  for (int i = 0; i < 200000; ++i) {
+  for (int i = 0; i < count; ++i) {
     glm::vec3 o = randomOrigin(rng, g);
     glm::vec3 d = someDirection(rng, g, o);
     switch (i % 8) {
@@ -766,6 +762,15 @@ TEST(TraversalLists, MatchTheDdaWalkForRaysThatTripDdas) {
     if (i % 11 == 0) tmax = 10.0f * u(rng);
     rays.push_back({o.x, o.y, o.z, tmin, d.x, d.y, d.z, tmax});
   }
+  return rays;
+}
+
+// Where methods fail: the rays of raysThatTripDdas. The lists (walked in packets as wide
+// as the build's vectors, dda_packet.h) must still equal the scalar walk bit for bit.
+TEST(TraversalLists, MatchTheDdaWalkForRaysThatTripDdas) {
+  std::mt19937 rng(29);
+  UniformGrid grid = randomTriangleGrid(rng, 80, {7, 6, 5});
+  const std::vector<GrRay> rays = raysThatTripDdas(rng, grid.info, 200000);
   TraversalLists lists;
   for (size_t count : {rays.size(), size_t(1), size_t(17), size_t(4099)}) {
     SCOPED_TRACE(std::to_string(count) + " rays");
@@ -773,6 +778,40 @@ TEST(TraversalLists, MatchTheDdaWalkForRaysThatTripDdas) {
     expectListsMatchTheWalk(grid, rays.data(), count, lists);
   }
   EXPECT_GT(lists.entries.size(), size_t(1000));  // the rays really pierce PEs
+}
+
+// The packet walk at every width the build has (1, 4, 8, 16 lanes) equals the scalar walk
+// bit for bit, in full packets and in a last, partial one.
+TEST(TraversalLists, PacketWalkOfEveryBuiltWidthMatchesTheDdaWalk) {
+  std::mt19937 rng(31);
+  UniformGrid grid = randomTriangleGrid(rng, 80, {7, 6, 5});
+  const GrGridInfo& g = grid.info;
+  const std::vector<GrRay> rays = raysThatTripDdas(rng, g, 20011);
+  const int stride = g.nx + g.ny + g.nz;
+  int widths = 0;
+  for (int lanes : {1, 4, 8, 16}) {
+    if (!ddaPacketWidthIsBuilt(lanes)) continue;
+    ++widths;
+    SCOPED_TRACE(std::to_string(lanes) + " lanes");
+    TraversalLists lists;
+    lists.begin.assign(1, 0);
+    std::vector<ListEntry> packet(size_t(lanes) * stride);
+    int found[kDdaPacketMaxLanes];
+    for (size_t r = 0; r < rays.size(); r += lanes) {
+      const int n = int(std::min<size_t>(lanes, rays.size() - r));
+      ddaPacketOfWidth(lanes, g, grid.pe_of_voxel.data(), rays.data() + r, n, packet.data(), stride,
+                       found);
+      for (int k = 0; k < n; ++k) {
+        lists.entries.insert(lists.entries.end(), packet.begin() + size_t(k) * stride,
+                             packet.begin() + size_t(k) * stride + found[k]);
+        lists.begin.push_back(int(lists.entries.size()));
+      }
+    }
+    expectListsMatchTheWalk(grid, rays.data(), rays.size(), lists);
+  }
+  EXPECT_TRUE(ddaPacketWidthIsBuilt(1));
+  EXPECT_TRUE(ddaPacketWidthIsBuilt(ddaPacketLanes()));
+  EXPECT_GE(widths, 1);
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 
 namespace gridrt {
 
-static_assert(kTileSize * kTileSize == kBundleLanes, "a tile is one packet");
+static_assert(kTileSize * kTileSize == GR_PACKET_LANES, "a tile is one packet");
 
 namespace {
 
@@ -72,7 +72,7 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   const PixelWindow& win = view.window;
   const int ww = win.width(), wh = win.height();
   const int tiles_x = (ww + kTileSize - 1) / kTileSize, tiles_y = (wh + kTileSize - 1) / kTileSize;
-  const size_t slots = size_t(tiles_x) * tiles_y * kBundleLanes;
+  const size_t slots = size_t(tiles_x) * tiles_y * GR_PACKET_LANES;
   // The tile layout depends on the window's size only: kept from the previous call.
   const bool same_layout =
       bundles.ray_of.size() == slots && scratch.layout_width == ww && scratch.layout_height == wh;
@@ -81,7 +81,7 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   bundles.ray_of.resize(slots);
 #pragma omp parallel for schedule(static) if (!same_layout)
   for (long long b = 0; b < (same_layout ? 0 : (long long)slots); ++b) {
-    int tile = int(b / kBundleLanes), lane = int(b % kBundleLanes);
+    int tile = int(b / GR_PACKET_LANES), lane = int(b % GR_PACKET_LANES);
     int x = (tile % tiles_x) * kTileSize + lane % kTileSize;
     int y = (tile / tiles_x) * kTileSize + lane / kTileSize;
     bundles.ray_of[b] = x < ww && y < wh ? y * ww + x : -1;
@@ -159,7 +159,8 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
     for (const TileRun& r : runs) sorted[row_start[r.ty]++] = r;
   bundles.clearTasks();
   for (const TileRun& r : sorted)
-    bundles.addRange(r.pe, (r.ty * tiles_x + r.tx0) * kBundleLanes, (r.tx1 - r.tx0) * kBundleLanes);
+    bundles.addRange(r.pe, (r.ty * tiles_x + r.tx0) * GR_PACKET_LANES,
+                     (r.tx1 - r.tx0) * GR_PACKET_LANES);
 }
 
 }  // namespace gridrt

@@ -13,7 +13,7 @@
 
 namespace gridrt {
 
-constexpr int kTileSize = 4;  // kTileSize^2 == kBundleLanes
+constexpr int kTileSize = 4;  // kTileSize^2 == GR_PACKET_LANES
 
 // One PE's tiles [tx0, tx1) of tile row ty.
 struct TileRun {

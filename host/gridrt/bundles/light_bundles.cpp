@@ -133,7 +133,7 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
   // that cell from the threads before it.
   std::vector<int>& start = scratch.cell_start;
   start.assign(cells + 1, 0);
-  bundles.ray_of.resize((count + kBundleLanes - 1) / kBundleLanes * kBundleLanes);
+  bundles.ray_of.resize((count + GR_PACKET_LANES - 1) / GR_PACKET_LANES * GR_PACKET_LANES);
   scratch.thread_counts.resize(threads);
 #pragma omp parallel num_threads(threads)
   {

@@ -13,14 +13,12 @@
 
 namespace gridrt {
 
-// Rays per packet: one float16 lane each.
-constexpr int kBundleLanes = 16;
 // Longest task in packets: bounds a work-group's share so both cores stay busy.
 constexpr int kMaxTaskPackets = 32;
 
 struct RayBundles {
   // Bundle order -> index of the ray in the batch; -1 marks padding (never pierces).
-  // Its length is a multiple of kBundleLanes.
+  // Its length is a multiple of GR_PACKET_LANES.
   std::vector<int> ray_of;
   std::vector<GrBundleTask> tasks;
   size_t out_lanes = 0;  // result lanes of all tasks (each task's rounded up to a packet)

@@ -60,9 +60,9 @@ void computeCullBoxes(const GrCullFrame& frame, const glm::vec3& origin,
                       const std::vector<GrTriangle>& triangles, std::vector<CullBox>& boxes,
                       double error_factor = kCullErrorFactor);
 
-// The padding after each plane of boxes: the PE kernel reads 16 boxes at a time, so its
-// last load of a PE may run 15 boxes past the end.
-constexpr size_t kCullPlanePadding = 16;
+// The padding after each plane of boxes: the PE kernel reads a float16 of boxes at a time,
+// so its last load of a PE may run 15 boxes past the end.
+constexpr size_t kCullPlanePadding = GR_PACKET_LANES;
 
 // The boxes as the PE kernel reads them: four planes (amin, amax, bmin, bmax), each
 // stride() = triangles + kCullPlanePadding floats long. Recomputed only when the frame or the

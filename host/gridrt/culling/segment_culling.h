@@ -33,8 +33,8 @@ constexpr double kSegmentCullMaxConditioning = 1024.0;
 // PEs with fewer triangles skip the packet's summary, which costs about what testing a
 // few triangles does.
 constexpr int kSegmentCullMinTriangles = 16;
-// The padding after each plane: the kernel reads 16 triangles at a time.
-constexpr size_t kSegmentCullPlanePadding = 16;
+// The padding after each plane: the kernel reads a float16 of triangles at a time.
+constexpr size_t kSegmentCullPlanePadding = GR_PACKET_LANES;
 
 // The planes for `triangles` (the PE triangles, MT edges or watertight vertices), each
 // stride = triangles + kSegmentCullPlanePadding floats long.

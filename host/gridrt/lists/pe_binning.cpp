@@ -11,14 +11,15 @@ namespace gridrt {
 namespace {
 
 constexpr int kOctants = 8;
-constexpr int kLanes = GR_PAIR_LANES;
 
 // 0..7 from the signs of the direction (a zero counts as positive).
 int octantOf(const GrRay& ray) {
   return (ray.dx < 0.0f ? 1 : 0) | (ray.dy < 0.0f ? 2 : 0) | (ray.dz < 0.0f ? 4 : 0);
 }
 
-int roundUpToPacket(int lanes) { return (lanes + kLanes - 1) / kLanes * kLanes; }
+int roundUpToPacket(int lanes) {
+  return (lanes + GR_PACKET_LANES - 1) / GR_PACKET_LANES * GR_PACKET_LANES;
+}
 
 float intBits(int value) {
   float f;
@@ -28,13 +29,14 @@ float intBits(int value) {
 
 // Pair number `position` (lane position % 16 of packet position / 16).
 void writePair(float* out, int position, const GrRay& ray, int r, const ListEntry& entry) {
-  float* lane = out + size_t(position / kLanes) * kPairPacketFloats + position % kLanes;
-  if (position % kLanes == 0) {
+  float* lane =
+      out + size_t(position / GR_PACKET_LANES) * kPairPacketFloats + position % GR_PACKET_LANES;
+  if (position % GR_PACKET_LANES == 0) {
     // A part's packets follow one another: the next one's lines are fetched for writing
     // now, sixteen of the part's pairs before they are needed (each store would
     // otherwise wait for its line: the buffer is larger than the core's cache).
     const float* next = lane + kPairPacketFloats;
-    for (int q = 0; q < GR_PAIR_PLANES; ++q) __builtin_prefetch(next + q * kLanes, 1, 3);
+    for (int q = 0; q < GR_PAIR_PLANES; ++q) __builtin_prefetch(next + q * GR_PACKET_LANES, 1, 3);
   }
   lane[gr_pair_value(GR_PAIR_OX, 0)] = ray.ox;
   lane[gr_pair_value(GR_PAIR_OY, 0)] = ray.oy;
@@ -53,12 +55,13 @@ void writePair(float* out, int position, const GrRay& ray, int r, const ListEntr
 
 size_t maxPairPackets(size_t pairs, int pe_count) {
   const size_t parts = size_t(pe_count) * kOctants;
-  return (pairs + (kLanes - 1) * std::min(pairs, parts) + kLanes - 1) / kLanes;
+  return (pairs + (GR_PACKET_LANES - 1) * std::min(pairs, parts) + GR_PACKET_LANES - 1) /
+         GR_PACKET_LANES;
 }
 
 void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int task_rays,
              PeBins& bins, float* out) {
-  if (task_rays <= 0 || task_rays % kLanes != 0)
+  if (task_rays <= 0 || task_rays % GR_PACKET_LANES != 0)
     throw std::invalid_argument("binByPe: task_rays must be a positive multiple of 16");
   const int threads = omp_get_max_threads();
   const size_t ray_count = lists.rayCount();
@@ -107,7 +110,7 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
       }
     }
   }
-  bins.packets = size_t(lanes_total / kLanes);
+  bins.packets = size_t(lanes_total / GR_PACKET_LANES);
   bins.tasks.clear();
   bins.pairs_per_pe.assign(pe_count, 0);
   int start = 0;  // the part's first lane
@@ -116,11 +119,13 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
     if (n == 0) continue;
     bins.pairs_per_pe[pe] += n;
     for (int k = 0; k < n; k += task_rays)
-      bins.tasks.push_back(GrPeTask{pe, (start + k) / kLanes, std::min(task_rays, n - k), 0});
+      bins.tasks.push_back(
+          GrPeTask{pe, (start + k) / GR_PACKET_LANES, std::min(task_rays, n - k), 0});
     // Zero the lanes past the part's last pair: no stale values in an inactive lane.
-    for (int position = start + n; position % kLanes != 0; ++position) {
-      float* packet = out + size_t(position / kLanes) * kPairPacketFloats;
-      for (int q = 0; q < GR_PAIR_PLANES; ++q) packet[gr_pair_value(q, position % kLanes)] = 0.0f;
+    for (int position = start + n; position % GR_PACKET_LANES != 0; ++position) {
+      float* packet = out + size_t(position / GR_PACKET_LANES) * kPairPacketFloats;
+      for (int q = 0; q < GR_PAIR_PLANES; ++q)
+        packet[gr_pair_value(q, position % GR_PACKET_LANES)] = 0.0f;
     }
     start = roundUpToPacket(start + n);
   }

@@ -24,8 +24,8 @@ struct PeBins {
   std::vector<std::vector<int>> thread_counts;  // scratch reused between batches
 };
 
-// Floats of one packet: GR_PAIR_PLANES planes of 16 lanes.
-constexpr size_t kPairPacketFloats = size_t(GR_PAIR_PLANES) * GR_PAIR_LANES;
+// Floats of one packet: GR_PAIR_PLANES planes of GR_PACKET_LANES lanes.
+constexpr size_t kPairPacketFloats = size_t(GR_PAIR_PLANES) * GR_PACKET_LANES;
 
 // The most packets binByPe writes for `pairs` pairs among `pe_count` PEs (each non-empty
 // part pads its last packet).

@@ -6,7 +6,6 @@
 #include <cstring>
 
 #include "dda_packet.h"
-#include "grid_dda.h"
 
 namespace gridrt {
 
@@ -21,41 +20,24 @@ void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t co
   // Lane-major room for a packet's lists: a ray visits fewer than nx + ny + nz voxels.
   const GrGridInfo& g = grid.info;
   const int stride = g.nx + g.ny + g.nz;
-  if (kDdaPacketLanes > 0) {
-    lists.packet_scratch.resize(omp_get_max_threads());
-    for (auto& s : lists.packet_scratch) s.resize(kDdaPacketLanes * size_t(stride));
-  }
+  const int lanes = ddaPacketLanes();
+  lists.packet_scratch.resize(omp_get_max_threads());
+  for (auto& s : lists.packet_scratch) s.resize(lanes * size_t(stride));
 #pragma omp parallel for schedule(dynamic, 1)
   for (long long chunk = 0; chunk < (long long)chunks; ++chunk) {
     auto& out = lists.scratch[chunk];
     out.clear();
     const size_t first = size_t(chunk) * kListChunkRays;
     const size_t last = std::min(count, first + kListChunkRays);
-    if (kDdaPacketLanes > 0) {
-      ListEntry* lanes = lists.packet_scratch[omp_get_thread_num()].data();
-      int found[kDdaPacketLanes > 0 ? kDdaPacketLanes : 1];
-      for (size_t r = first; r < last; r += kDdaPacketLanes) {
-        const int n = int(std::min<size_t>(kDdaPacketLanes, last - r));
-        ddaPacket(g, grid.pe_of_voxel.data(), rays + r, n, lanes, stride, found);
-        for (int k = 0; k < n; ++k) {
-          out.insert(out.end(), lanes + size_t(k) * stride, lanes + size_t(k) * stride + found[k]);
-          lists.begin[r + k + 1] = found[k];  // a count for now
-        }
+    ListEntry* packet = lists.packet_scratch[omp_get_thread_num()].data();
+    int found[kDdaPacketMaxLanes];
+    for (size_t r = first; r < last; r += lanes) {
+      const int n = int(std::min<size_t>(lanes, last - r));
+      ddaPacket(g, grid.pe_of_voxel.data(), rays + r, n, packet, stride, found);
+      for (int k = 0; k < n; ++k) {
+        out.insert(out.end(), packet + size_t(k) * stride, packet + size_t(k) * stride + found[k]);
+        lists.begin[r + k + 1] = found[k];  // a count for now
       }
-      continue;
-    }
-    for (size_t r = first; r < last; ++r) {
-      const GrRay& ray = rays[r];
-      size_t before = out.size();
-      GrDda s;
-      if (gr_dda_begin(&g, ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, ray.tmin, ray.tmax,
-                       &s)) {
-        do {
-          int pe = grid.pe_of_voxel[s.ix + g.nx * (s.iy + g.ny * s.iz)];
-          if (pe >= 0) out.push_back({pe, s.t_enter, s.t_exit});
-        } while (gr_dda_step(&g, &s));
-      }
-      lists.begin[r + 1] = int(out.size() - before);  // a count for now
     }
   }
   for (size_t r = 0; r < count; ++r) lists.begin[r + 1] += lists.begin[r];

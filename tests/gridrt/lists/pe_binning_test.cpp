@@ -53,7 +53,7 @@ TEST(PeBinning, EveryPairOnceInATaskOfItsPeWithOneOctantInRayOrder) {
     ASSERT_LE(task.pair_count, task_rays);
     const int head_ray = planeInt(task.first_packet, GR_PAIR_RAY, 0);
     for (int k = 0; k < task.pair_count; ++k) {
-      const int p = task.first_packet + k / GR_PAIR_LANES, lane = k % GR_PAIR_LANES;
+      const int p = task.first_packet + k / GR_PACKET_LANES, lane = k % GR_PACKET_LANES;
       ASSERT_LT(size_t(p), bins.packets);
       ++packet_used[p];
       const int ray = planeInt(p, GR_PAIR_RAY, lane);
@@ -72,23 +72,23 @@ TEST(PeBinning, EveryPairOnceInATaskOfItsPeWithOneOctantInRayOrder) {
       EXPECT_EQ(octant(rays[ray]), octant(rays[head_ray])) << "task mixes octants";
       if (k > 0) {
         const int before = k - 1;
-        EXPECT_LT(planeInt(task.first_packet + before / GR_PAIR_LANES, GR_PAIR_RAY,
-                           before % GR_PAIR_LANES),
+        EXPECT_LT(planeInt(task.first_packet + before / GR_PACKET_LANES, GR_PAIR_RAY,
+                           before % GR_PACKET_LANES),
                   ray)
             << "ray order";
       }
       ++seen[slot];
     }
     // The lanes past a task's last pair in its last packet are zero (no stale rays).
-    if (task.pair_count % GR_PAIR_LANES != 0) {
-      const int p = task.first_packet + task.pair_count / GR_PAIR_LANES;
-      for (int lane = task.pair_count % GR_PAIR_LANES; lane < GR_PAIR_LANES; ++lane)
+    if (task.pair_count % GR_PACKET_LANES != 0) {
+      const int p = task.first_packet + task.pair_count / GR_PACKET_LANES;
+      for (int lane = task.pair_count % GR_PACKET_LANES; lane < GR_PACKET_LANES; ++lane)
         for (int q = 0; q < GR_PAIR_PLANES; ++q) EXPECT_EQ(plane(p, q, lane), 0.0f);
     }
     pairs[task.pe] += task.pair_count;
   }
   for (size_t p = 0; p < packet_used.size(); ++p)
-    EXPECT_LE(packet_used[p], GR_PAIR_LANES) << "two tasks share packet " << p;
+    EXPECT_LE(packet_used[p], GR_PACKET_LANES) << "two tasks share packet " << p;
   for (size_t s = 0; s < seen.size(); ++s) EXPECT_EQ(seen[s], 1) << "slot " << s;
   for (int pe = 0; pe < pe_count; ++pe) EXPECT_EQ(bins.pairs_per_pe[pe], pairs[pe]);
 }
