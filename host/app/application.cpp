@@ -1,5 +1,6 @@
 #include "application.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -389,6 +390,13 @@ int runApplication(const Options& o) {
                           {"all_rays", gridrt->allInterrupt()},
                           {"skipped_pairs", c.skipped_pairs}};
   }
+  // Peak memory: the process's resident set (on a CPU device it holds the device buffers
+  // too) and the device buffers' own peak.
+  struct rusage usage {};
+  getrusage(RUSAGE_SELF, &usage);
+  stats["memory"] = {{"peak_host_mib", double(usage.ru_maxrss) / 1024.0},
+                     {"peak_device_buffers_mib", double(runtime.peakBufferBytes()) / 1048576.0},
+                     {"split_batches", c.split_batches}};
   if (!o.stats_json.empty()) writeJsonFile(o.stats_json, stats);
   if (o.stats) std::cout << formatStatisticsTable(stats);
   if (!o.quiet) printSummary(o, frame, median_frame, intersector->name());

@@ -1,0 +1,138 @@
+// The uneven scenes (tools/uneven_scenes.h: a model on floors up to 1000 times its size,
+// copies scattered far apart, a row, a huge triangle): batches too large for the device
+// run in parts with the same hits bit for bit.
+#include "uneven_scenes.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+
+#include "brute_intersector.h"
+#include "camera_rays.h"
+#include "cl_runtime.h"
+#include "gltf_loader.h"
+#include "gridrt_intersector.h"
+#include "prepared_triangles.h"
+#include "test_support.h"
+#include "uniform_grid.h"
+
+namespace gridrt {
+namespace {
+
+class UnevenScenes : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
+    runtime_ = std::make_unique<ClRuntime>("");
+  }
+
+  static const Scene& model() {
+    static const Scene bunny = loadGltfFile(test::modelScene("bunny_res4.glb"));
+    return bunny;
+  }
+
+  static std::vector<GrRay> cameraRays(const Scene& scene, int w, int h) {
+    std::vector<GrRay> rays;
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) rays.push_back(cameraRay(scene.camera, w, h, i, j, 0.5f, 0.5f));
+    return rays;
+  }
+
+  // Rays from random points of the scene's box in random directions.
+  static std::vector<GrRay> randomRays(const Bounds& b, size_t count, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f), signed_unit(-1.0f, 1.0f);
+    std::vector<GrRay> rays;
+    while (rays.size() < count) {
+      glm::vec3 o = b.lo + glm::vec3(unit(rng), unit(rng), unit(rng)) * b.extent();
+      glm::vec3 d(signed_unit(rng), signed_unit(rng), signed_unit(rng));
+      if (glm::length(d) < 0.1f) continue;
+      d = glm::normalize(d);
+      rays.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, 1e30f});
+    }
+    return rays;
+  }
+
+  // Shadow rays from the points the camera rays hit towards `light`.
+  static std::vector<GrRay> shadowRays(const std::vector<GrRay>& camera,
+                                       const std::vector<GrHit>& hits, glm::vec3 light) {
+    std::vector<GrRay> rays;
+    for (size_t i = 0; i < camera.size(); ++i) {
+      if (hits[i].prim < 0) continue;
+      const GrRay& c = camera[i];
+      glm::vec3 d(c.dx, c.dy, c.dz), p = glm::vec3(c.ox, c.oy, c.oz) + hits[i].t * d;
+      glm::vec3 to = light - p;
+      float distance = glm::length(to);
+      if (!(distance > 0.0f)) continue;
+      to /= distance;
+      rays.push_back(GrRay{p.x, p.y, p.z, 1e-4f * distance, to.x, to.y, to.z, distance});
+    }
+    return rays;
+  }
+
+  std::unique_ptr<ClRuntime> runtime_;
+};
+
+// A batch buffer limit far below what the batches need: the camera bundles, the light
+// bundles and the traversal lists each run in many parts, with the hits of one batch.
+TEST_F(UnevenScenes, BatchesSplitToFitASmallDeviceLimitGiveTheSameHitsBitForBit) {
+  const Scene scene = floorScene(model(), 10.0f);
+  const auto tris = prepareTriangles(scene);
+  const Bounds b = sceneBounds(scene);
+  GridSettings settings;
+  settings.ray_origins = primaryRayOrigins(scene.camera, 160, 120);
+  const UniformGrid grid = buildUniformGrid(tris, b, settings);
+  const PinholeView view = PinholeView::of(scene.camera, 160, 120, PixelWindow{});
+  const std::vector<GrRay> camera = cameraRays(scene, 160, 120);
+  BruteIntersector brute(*runtime_, tris);
+  std::vector<GrHit> want_camera;
+  brute.intersect(camera, HitMode::Closest, want_camera, nullptr);
+  const std::vector<GrRay> shadow = shadowRays(camera, want_camera, scene.lights.at(0).position);
+  const std::vector<GrRay> random = randomRays(b, 20000, 7);
+
+  for (PeInterrupt interrupt : {PeInterrupt::CameraRays, PeInterrupt::AllRays}) {
+    GridRtIntersector whole(*runtime_, grid, interrupt), parts(*runtime_, grid, interrupt);
+    parts.setBatchBufferLimit(64 << 10);  // 64 KiB: a few thousand lanes a part
+    whole.forceLightBundles();
+    parts.forceLightBundles();
+    std::vector<GrHit> a, c;
+    whole.intersectPrimary(view, camera, a, nullptr);
+    parts.intersectPrimary(view, camera, c, nullptr);
+    EXPECT_EQ(test::hitMismatches(a, c, "camera bundles split"), 0u);
+    EXPECT_EQ(test::hitMismatches(want_camera, c, "camera bundles split against brute"), 0u);
+    const uint64_t after_camera = parts.counters().split_batches;
+    EXPECT_GT(after_camera, 0u) << "the camera batch should have run in parts";
+
+    // Closest hits equal bit for bit; any-hit queries may report any occluder, so only
+    // whether there is one must agree.
+    auto expectSame = [](HitMode mode, const std::vector<GrHit>& x, const std::vector<GrHit>& y,
+                         const std::string& label) {
+      if (mode == HitMode::Closest) {
+        EXPECT_EQ(test::hitMismatches(x, y, label), 0u);
+        return;
+      }
+      ASSERT_EQ(x.size(), y.size());
+      size_t differ = 0;
+      for (size_t i = 0; i < x.size(); ++i) differ += (x[i].prim >= 0) != (y[i].prim >= 0);
+      EXPECT_EQ(differ, 0u) << label;
+    };
+    for (HitMode mode : {HitMode::Closest, HitMode::AnyHit}) {
+      whole.intersectTowardsPoint(scene.lights[0].position, shadow, mode, a);
+      parts.intersectTowardsPoint(scene.lights[0].position, shadow, mode, c);
+      expectSame(mode, a, c, "light bundles split");
+      whole.intersect(random, mode, a, nullptr);
+      parts.intersect(random, mode, c, nullptr);
+      expectSame(mode, a, c, "traversal lists split");
+    }
+    std::vector<GrHit> want_random;
+    brute.intersect(random, HitMode::Closest, want_random, nullptr);
+    parts.intersect(random, HitMode::Closest, c, nullptr);
+    EXPECT_EQ(test::hitMismatches(want_random, c, "traversal lists split against brute"), 0u);
+    EXPECT_GT(parts.counters().split_batches, after_camera) << "lists should have run in parts";
+    EXPECT_EQ(whole.counters().split_batches, 0u);
+  }
+}
+
+}  // namespace
+}  // namespace gridrt
