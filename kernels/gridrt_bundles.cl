@@ -4,8 +4,8 @@
  * float16 lanes against the voxel's triangles.
  *
  * The work-item decides itself which lanes pierce the voxel: the slab test with the
- * 3D-DDA's plane distances ((min + k * cell - o) * (1/d)), so two voxels that share a
- * plane share its distance bit for bit and every point of a ray inside the grid lies in
+ * 3D-DDA's plane distances ((min + k * cell - o) * (1/d), the planes from the host's
+ * UniformGrid::pe_box), so two voxels that share a plane share its distance bit for bit and every point of a ray inside the grid lies in
  * the [t_enter, t_exit] of some voxel it pierces. Phase 1 of the reduction: each pierced
  * lane keeps its closest hit INSIDE the voxel (t_enter <= t <= t_exit), so the first PE of
  * a ray's traversal list (entry order) holding a hit also holds the smallest t; phase 2 on
@@ -99,21 +99,18 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
 
 __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void gridrt_bundles(
     __global const GrBundleTask* tasks, __global const float* planes, int stride, int common_origin,
-    GrRay common, GrGridInfo grid, __global const int* voxel_of_pe,
+    GrRay common, GrGridInfo grid, __global const float* pe_box,
     __global const int* pe_tri_begin, __global const GrTriangle* pe_tris, __global float* results,
     int lanes, __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
     __global const float* cull_planes, int cull_stride, __global const float* seg_planes,
     int seg_stride) {
   const GrBundleTask task = tasks[get_group_id(0)];
-  const int voxel = voxel_of_pe[task.pe];
-  const int vx = voxel % grid.nx, vy = (voxel / grid.nx) % grid.ny,
-            vz = voxel / (grid.nx * grid.ny);
-  const float lox = grid.minx + (float)vx * grid.cellx,
-              hix = grid.minx + (float)(vx + 1) * grid.cellx;
-  const float loy = grid.miny + (float)vy * grid.celly,
-              hiy = grid.miny + (float)(vy + 1) * grid.celly;
-  const float loz = grid.minz + (float)vz * grid.cellz,
-              hiz = grid.minz + (float)(vz + 1) * grid.cellz;
+  /* The PE's box (UniformGrid::pe_box): a uniform grid's voxel as the 3D-DDA's planes
+   * (min + k * cell, computed on the host in float) or an adaptive leaf, whose faces are
+   * the planes of the grids above it; neighbours share their faces' floats. */
+  __global const float* box = pe_box + 6 * task.pe;
+  const float lox = box[0], loy = box[1], loz = box[2];
+  const float hix = box[3], hiy = box[4], hiz = box[5];
   const int begin = pe_tri_begin[task.pe], end = pe_tri_begin[task.pe + 1];
   const int packets = (task.ray_count + LANES - 1) / LANES;
   /* Packet culling needs a common origin; rays with their own origins use segment

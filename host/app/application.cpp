@@ -10,6 +10,7 @@
 #include <iostream>
 #include <memory>
 
+#include "adaptive_grid.h"
 #include "brute_intersector.h"
 #include "camera_rays.h"
 #include "cl_runtime.h"
@@ -293,7 +294,8 @@ int runApplication(const Options& o) {
   if (uses_grid) {
     GridSettings settings = o.grid;
     settings.ray_origins = primaryRayOrigins(camera, o.width, o.height);
-    grid = buildUniformGrid(triangles, sceneBounds(scene), settings);
+    if (o.accel == AccelKind::Dda) settings.adaptive = false;  // its kernel walks voxels
+    grid = buildGrid(triangles, sceneBounds(scene), settings);
   }
   double build_ms = clock.ms();
 
@@ -365,7 +367,9 @@ int runApplication(const Options& o) {
     std::vector<int> refs(grid.peCount());
     for (int pe = 0; pe < grid.peCount(); ++pe) refs[pe] = grid.triangleCountOfPe(pe);
     MeanMax r = meanMax(refs);
-    stats["grid"] = {{"dims", {grid.info.nx, grid.info.ny, grid.info.nz}},
+    stats["grid"] = {{"structure", grid.adaptive.empty() ? "uniform" : "adaptive"},
+                     {"depth", grid.adaptive.depth},
+                     {"dims", {grid.info.nx, grid.info.ny, grid.info.nz}},
                      {"voxels", grid.voxelCount()},
                      {"pes", grid.peCount()},
                      {"refs_per_pe_mean", r.mean},

@@ -67,7 +67,7 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
   bundle_kernel_ = cl::Kernel(rt_.program("gridrt_bundles.cl", defines), "gridrt_bundles");
   checkTriangleLayout(grid.pe_triangles, kernel_options);
   pe_tri_begin_.uploadNow(rt_, grid.pe_tri_begin);
-  voxel_of_pe_.uploadNow(rt_, grid.voxel_of_pe);
+  pe_box_.uploadNow(rt_, grid.pe_box);
   pe_triangles_.uploadNow(rt_, grid.pe_triangles);
   std::vector<float> seg_planes;
   computeSegmentCullPlanes(grid.pe_triangles, seg_planes);
@@ -511,7 +511,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       k.setArg(arg++, common_origin ? 1 : 0);
       k.setArg(arg++, common);
       k.setArg(arg++, grid_.info);
-      k.setArg(arg++, voxel_of_pe_.get());
+      k.setArg(arg++, pe_box_.get());
       k.setArg(arg++, pe_tri_begin_.get());
       k.setArg(arg++, pe_triangles_.get());
       k.setArg(arg++, results_.get());

@@ -171,7 +171,7 @@ class GridRtIntersector : public Intersector {
   // Segment culling: the PE triangles' planes (segment_culling.h), uploaded once.
   DeviceBuffer<float> seg_planes_{"the segment culling planes", CL_MEM_READ_ONLY};
   int seg_stride_ = 0;
-  DeviceBuffer<int> voxel_of_pe_{"the PE voxels", CL_MEM_READ_ONLY};
+  DeviceBuffer<float> pe_box_{"the PE boxes", CL_MEM_READ_ONLY};
   DeviceBuffer<float> planes_{"the ray bundle", CL_MEM_READ_ONLY};
   DeviceBuffer<GrBundleTask> bundle_tasks_{"the bundle tasks", CL_MEM_READ_ONLY};
   // Phase 1's results of either path (GR_RESULT_*): planes per lane, then packet masks.

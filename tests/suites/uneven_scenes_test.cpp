@@ -1,6 +1,7 @@
 // The uneven scenes (tools/uneven_scenes.h: a model on floors up to 1000 times its size,
 // copies scattered far apart, a row, a huge triangle): batches too large for the device
-// run in parts with the same hits bit for bit.
+// run in parts with the same hits bit for bit, and every path of the GridRT intersector
+// equals brute force on every pixel.
 #include "uneven_scenes.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <memory>
 #include <random>
 
+#include "adaptive_grid.h"
 #include "brute_intersector.h"
 #include "camera_rays.h"
 #include "cl_runtime.h"
@@ -69,6 +71,54 @@ class UnevenScenes : public ::testing::Test {
       rays.push_back(GrRay{p.x, p.y, p.z, 1e-4f * distance, to.x, to.y, to.z, distance});
     }
     return rays;
+  }
+
+  // Every path of the GridRT intersector (camera bundles, traversal lists, light bundles;
+  // with and without the interrupt) against brute force on `scene`'s camera rays, random
+  // rays and shadow rays, closest hits bit for bit and any-hit answers hit for hit.
+  // Returns the structure's depth below its top grid.
+  int expectAllPathsMatchBrute(const Scene& scene, const GridSettings& settings, int w, int h,
+                               const std::string& label) {
+    const auto tris = prepareTriangles(scene);
+    const Bounds b = sceneBounds(scene);
+    GridSettings s = settings;
+    s.ray_origins = primaryRayOrigins(scene.camera, w, h);
+    const UniformGrid grid = buildGrid(tris, b, s);
+    const std::string where = label + (grid.adaptive.empty() ? " uniform" : " adaptive") +
+                              " depth " + std::to_string(grid.adaptive.depth) + ", " +
+                              std::to_string(grid.peCount()) + " PEs";
+    const PinholeView view = PinholeView::of(scene.camera, w, h, PixelWindow{});
+    const std::vector<GrRay> camera = cameraRays(scene, w, h);
+    const std::vector<GrRay> random = randomRays(b, 4000, 11);
+    BruteIntersector brute(*runtime_, tris);
+    std::vector<GrHit> want_camera, want_random, want_shadow, want_any, got;
+    brute.intersect(camera, HitMode::Closest, want_camera, nullptr);
+    brute.intersect(random, HitMode::Closest, want_random, nullptr);
+    const glm::vec3 light = scene.lights.at(0).position;
+    const std::vector<GrRay> shadow = shadowRays(camera, want_camera, light);
+    brute.intersect(shadow, HitMode::Closest, want_shadow, nullptr);
+    for (PeInterrupt interrupt :
+         {PeInterrupt::Off, PeInterrupt::CameraRays, PeInterrupt::AllRays}) {
+      const std::string at = where + " interrupt " + std::to_string(int(interrupt));
+      GridRtIntersector gridrt(*runtime_, grid, interrupt);
+      gridrt.intersectPrimary(view, camera, got, nullptr);
+      EXPECT_EQ(test::hitMismatches(want_camera, got, at + " camera bundles"), 0u);
+      gridrt.intersect(camera, HitMode::Closest, got, nullptr);
+      EXPECT_EQ(test::hitMismatches(want_camera, got, at + " camera rays as lists"), 0u);
+      gridrt.intersect(random, HitMode::Closest, got, nullptr);
+      EXPECT_EQ(test::hitMismatches(want_random, got, at + " random rays"), 0u);
+      gridrt.intersectTowardsPoint(light, shadow, HitMode::Closest, got);
+      EXPECT_EQ(test::hitMismatches(want_shadow, got, at + " shadow rays"), 0u);
+      gridrt.forceLightBundles();
+      gridrt.intersectTowardsPoint(light, shadow, HitMode::Closest, got);
+      EXPECT_EQ(test::hitMismatches(want_shadow, got, at + " light bundles"), 0u);
+      gridrt.intersectTowardsPoint(light, shadow, HitMode::AnyHit, got);
+      size_t differ = 0;
+      for (size_t i = 0; i < shadow.size(); ++i)
+        differ += (got[i].prim >= 0) != (want_shadow[i].prim >= 0);
+      EXPECT_EQ(differ, 0u) << at << " light bundles any-hit";
+    }
+    return grid.adaptive.depth;
   }
 
   std::unique_ptr<ClRuntime> runtime_;
@@ -133,6 +183,40 @@ TEST_F(UnevenScenes, BatchesSplitToFitASmallDeviceLimitGiveTheSameHitsBitForBit)
     EXPECT_EQ(whole.counters().split_batches, 0u);
   }
 }
+
+// The family made of bunny_res4 (950 triangles), each scene with the adaptive structure at
+// three leaf sizes (256: the default, which splits only the cells around the model on the
+// large floors; 32 and 8 reach two and three levels below the top) and two densities, and
+// the uniform auto grid.
+class UnevenFamily : public UnevenScenes, public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(UnevenFamily, EveryPathMatchesBruteOnEveryPixel) {
+  Scene scene;
+  for (auto& [name, s] : unevenScenes(model(), 8))
+    if (name == GetParam()) scene = std::move(s);
+  ASSERT_GT(scene.triangleCount(), 0u);
+  std::vector<GridSettings> settings;
+  for (int leaf : {256, 32, 8})
+    for (float density : {kDefaultGridDensity, 0.5f}) {
+      GridSettings s;
+      s.adaptive = true;
+      s.max_leaf_triangles = leaf;
+      s.density = density;
+      settings.push_back(s);
+    }
+  settings.push_back(GridSettings{});  // uniform
+  int depth = 0;
+  for (const GridSettings& s : settings)
+    depth = std::max(depth, expectAllPathsMatchBrute(scene, s, 96, 72,
+                                                     GetParam() + " leaf " +
+                                                         std::to_string(s.max_leaf_triangles) +
+                                                         " density " + std::to_string(s.density)));
+  EXPECT_GE(depth, 2) << "the small leaves should reach two levels below the top grid";
+}
+
+INSTANTIATE_TEST_SUITE_P(Family, UnevenFamily,
+                         ::testing::Values("floor_1x", "floor_10x", "floor_100x", "floor_1000x",
+                                           "scattered", "row", "huge_triangle"));
 
 }  // namespace
 }  // namespace gridrt
