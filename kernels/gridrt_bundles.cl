@@ -5,11 +5,11 @@
  *
  * The work-item decides itself which lanes pierce the voxel: the slab test with the
  * 3D-DDA's plane distances ((min + k * cell - o) * (1/d), the planes from the host's
- * UniformGrid::pe_box), so two voxels that share a plane share its distance bit for bit and every point of a ray inside the grid lies in
- * the [t_enter, t_exit] of some voxel it pierces. Phase 1 of the reduction: each pierced
- * lane keeps its closest hit INSIDE the voxel (t_enter <= t <= t_exit), so the first PE of
- * a ray's traversal list (entry order) holding a hit also holds the smallest t; phase 2 on
- * the host picks it.
+ * UniformGrid::pe_box), so two voxels that share a plane share its distance bit for bit
+ * and every point of a ray inside the grid lies in the [t_enter, t_exit] of some voxel it
+ * pierces. Phase 1 of the reduction: each pierced lane keeps its closest hit INSIDE the
+ * voxel (t_enter <= t <= t_exit), so the first PE of a ray's traversal list (entry order)
+ * holding a hit also holds the smallest t; phase 2 on the host picks it.
  *
  * INTERRUPT emulates the paper's interrupt chain as gridrt_lists.cl does: a lane is skipped
  * when first_hit_key (per bundle ray, the int bits of the smallest t_enter of a PE with a
@@ -99,9 +99,9 @@ inline __attribute__((always_inline)) void gr_bundle_packet(
 
 __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void gridrt_bundles(
     __global const GrBundleTask* tasks, __global const float* planes, int stride, int common_origin,
-    GrRay common, GrGridInfo grid, __global const float* pe_box,
-    __global const int* pe_tri_begin, __global const GrTriangle* pe_tris, __global float* results,
-    int lanes, __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
+    GrRay common, GrGridInfo grid, __global const float* pe_box, __global const int* pe_tri_begin,
+    __global const GrTriangle* pe_tris, __global float* results, int lanes,
+    __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
     __global const float* cull_planes, int cull_stride, __global const float* seg_planes,
     int seg_stride) {
   const GrBundleTask task = tasks[get_group_id(0)];
