@@ -13,6 +13,7 @@
 #include "brute_intersector.h"
 #include "camera_rays.h"
 #include "cl_runtime.h"
+#include "default_scene.h"
 #include "gltf_loader.h"
 #include "gridrt_intersector.h"
 #include "prepared_triangles.h"
@@ -94,7 +95,9 @@ class UnevenScenes : public ::testing::Test {
     std::vector<GrHit> want_camera, want_random, want_shadow, want_any, got;
     brute.intersect(camera, HitMode::Closest, want_camera, nullptr);
     brute.intersect(random, HitMode::Closest, want_random, nullptr);
-    const glm::vec3 light = scene.lights.at(0).position;
+    const glm::vec3 light = scene.lights.empty()
+                                ? b.center() + glm::vec3(0.1f, 0.8f, 0.2f) * glm::length(b.extent())
+                                : scene.lights[0].position;
     const std::vector<GrRay> shadow = shadowRays(camera, want_camera, light);
     brute.intersect(shadow, HitMode::Closest, want_shadow, nullptr);
     for (PeInterrupt interrupt :
@@ -212,6 +215,27 @@ TEST_P(UnevenFamily, EveryPathMatchesBruteOnEveryPixel) {
                                                          std::to_string(s.max_leaf_triangles) +
                                                          " density " + std::to_string(s.density)));
   EXPECT_GE(depth, 2) << "the small leaves should reach two levels below the top grid";
+}
+
+// The scenes that are even already (the default scene, whose glass sphere's voxels the
+// adaptive structure refines, bunny_res4 and the teapot), with the adaptive structure at
+// the default leaf limit and at 16, against brute force the same way.
+TEST_F(UnevenScenes, TheAdaptiveStructureMatchesBruteOnTheEvenScenes) {
+  std::vector<std::pair<std::string, Scene>> scenes;
+  scenes.emplace_back("default scene", makeDefaultScene());
+  scenes.emplace_back("bunny_res4", model());
+  scenes.emplace_back("teapot", loadGltfFile(test::modelScene("teapot.glb")));
+  for (auto& [name, scene] : scenes) {
+    if (!scene.has_camera) scene.camera = defaultCamera(sceneBounds(scene));
+    for (int leaf : {256, 16}) {
+      GridSettings s;
+      s.adaptive = true;
+      s.max_leaf_triangles = leaf;
+      const int depth =
+          expectAllPathsMatchBrute(scene, s, 96, 72, name + " leaf " + std::to_string(leaf));
+      if (leaf == 16) EXPECT_GE(depth, 1) << name;
+    }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Family, UnevenFamily,
