@@ -4,12 +4,12 @@
  * float16 lanes against the voxel's triangles.
  *
  * The work-item decides itself which lanes pierce the voxel: the slab test with the
- * 3D-DDA's plane distances ((min + k * cell - o) * (1/d)), so two voxels that share a
- * plane share its distance bit for bit and every point of a ray inside the grid lies in
- * the [t_enter, t_exit] of some voxel it pierces. Phase 1 of the reduction: each pierced
- * lane keeps its closest hit INSIDE the voxel (t_enter <= t <= t_exit), so the first PE of
- * a ray's traversal list (entry order) holding a hit also holds the smallest t; phase 2 on
- * the host picks it.
+ * 3D-DDA's plane distances ((min + k * cell - o) * (1/d), the planes from the host's
+ * UniformGrid::pe_box), so two voxels that share a plane share its distance bit for bit
+ * and every point of a ray inside the grid lies in the [t_enter, t_exit] of some voxel it
+ * pierces. Phase 1 of the reduction: each pierced lane keeps its closest hit INSIDE the
+ * voxel (t_enter <= t <= t_exit), so the first PE of a ray's traversal list (entry order)
+ * holding a hit also holds the smallest t; phase 2 on the host picks it.
  *
  * INTERRUPT emulates the paper's interrupt chain as gridrt_lists.cl does: a lane is skipped
  * when first_hit_key (per bundle ray, the int bits of the smallest t of a hit) is below its
@@ -99,22 +99,23 @@ inline __attribute__((always_inline)) void gr_bundle_packet(const GrRays16* r, f
 
 __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void gridrt_bundles(
     __global const GrBundleTask* tasks, __global const float* planes, int stride, int common_origin,
-    GrRay common, GrGridInfo grid, __global const int* voxel_of_pe,
-    __global const int* pe_tri_begin, __global const GrTriangle* pe_tris, __global float* results,
-    int lanes, __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
+    GrRay common, GrGridInfo grid, __global const float* pe_box, __global const int* pe_tri_begin,
+    __global const GrTriangle* pe_tris, __global float* results, int lanes,
+    __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
     __global const float* cull_planes, int cull_stride, __global const float* seg_planes,
     int seg_stride) {
   const GrBundleTask task = tasks[get_group_id(0)];
-  const int voxel = voxel_of_pe[task.pe];
-  const int vx = voxel % grid.nx, vy = (voxel / grid.nx) % grid.ny,
-            vz = voxel / (grid.nx * grid.ny);
+  /* The PE's box (UniformGrid::pe_box): a uniform grid's voxel as the 3D-DDA's planes
+   * (min + k * cell, computed on the host in float) or an adaptive leaf, whose faces are
+   * the planes of the grids above it; neighbours share their faces' floats. */
+  __global const float* box_planes = pe_box + 6 * task.pe;
   GrVoxelBox box;
-  box.lox = grid.minx + (float)vx * grid.cellx;
-  box.hix = grid.minx + (float)(vx + 1) * grid.cellx;
-  box.loy = grid.miny + (float)vy * grid.celly;
-  box.hiy = grid.miny + (float)(vy + 1) * grid.celly;
-  box.loz = grid.minz + (float)vz * grid.cellz;
-  box.hiz = grid.minz + (float)(vz + 1) * grid.cellz;
+  box.lox = box_planes[0];
+  box.loy = box_planes[1];
+  box.loz = box_planes[2];
+  box.hix = box_planes[3];
+  box.hiy = box_planes[4];
+  box.hiz = box_planes[5];
   GrPeGeometry pe;
   pe.tris = pe_tris;
   pe.begin = pe_tri_begin[task.pe];

@@ -11,6 +11,7 @@ their own columns (load_ms, compile_ms, build_ms).
                                               # and the default frame with Embree tracing beside gridrt
     .venv/bin/python tools/bench.py targets   # the four speed targets, Embree beside
     .venv/bin/python tools/bench.py single    # one render per process: wall time, peak memory
+    .venv/bin/python tools/bench.py adaptive  # uneven scenes: uniform grid, adaptive, Embree, in turns
     .venv/bin/python tools/bench.py all
 """
 import argparse
@@ -615,10 +616,128 @@ def machine_line():
         pass
     return f"{cpu}, {os.cpu_count()} cores, PoCL CPU device; medians of frames after a warm-up"
 
+# The adaptive set: the uneven family (tools/make_uneven_scenes, made from the full bunny
+# into build/uneven_scenes when the set runs) and the even scenes, primary rays, with the
+# uniform auto grid, the adaptive structure, Embree single-ray and Embree 16-ray packets
+# in turns, `rounds` rounds; each figure the median over the rounds. gridrt's figure is its
+# primary-ray tracing (trace.primary_ms: bundling, kernels, phase 2), Embree's its trace of
+# the same camera rays.
+MAKE_UNEVEN = os.path.join(ROOT, "build", "tools", "make_uneven_scenes")
+UNEVEN_DIR = os.path.join(ROOT, "build", "uneven_scenes")
+UNEVEN_SCENES = ["floor_1x", "floor_10x", "floor_100x", "floor_1000x", "scattered", "row",
+                 "huge_triangle"]
+ADAPTIVE_EVEN = [("bunny", os.path.join(MODELS, "bunny.glb")),
+                 ("bunny_res4", os.path.join(MODELS, "bunny_res4.glb")),
+                 ("teapot", os.path.join(MODELS, "teapot.glb")),
+                 ("default scene", None)]
+ADAPTIVE_SIZES = [(640, 480), (1280, 960)]
+ADAPTIVE_VARIANTS = ["uniform", "adaptive", "embree 1-ray", "embree 16-ray packets"]
+
+
+def adaptive_scenes():
+    subprocess.run([MAKE_UNEVEN, os.path.join(MODELS, "bunny.glb"), UNEVEN_DIR], check=True,
+                   capture_output=True)
+    return [(n, os.path.join(UNEVEN_DIR, n + ".glb")) for n in UNEVEN_SCENES] + ADAPTIVE_EVEN
+
+
+def bench_adaptive(frames, rounds=None):
+    rounds = rounds or TARGET_RUNS
+    peer = os.path.exists(EMBREE_PEER)
+    if not peer:
+        print(f"no {EMBREE_PEER} (tools/setup.sh --bench builds it): Embree columns left out")
+    rows = []
+    for name, path in adaptive_scenes():
+        for w, h in ADAPTIVE_SIZES:
+            args = ([path] if path else []) + ["--width", str(w), "--height", str(h)]
+            results = {v: [] for v in ADAPTIVE_VARIANTS}
+            for _ in range(rounds):
+                for grid in ("uniform", "adaptive"):
+                    s = run(args + ["--primary-only", "--grid", grid], frames)
+                    s["trace_ms"] = s["trace_primary_ms"]
+                    results[grid].append(s)
+                if peer and path:
+                    for label, packet in EMBREE_VARIANTS:
+                        s = run_peer(args, frames, packet)
+                        s["trace_ms"] = s["frame_ms"]
+                        results[label].append(s)
+            for variant, runs in results.items():
+                if not runs:
+                    continue
+                ms = statistics.median(r["trace_ms"] for r in runs)
+                first = runs[0]
+                grid = first.get("grid", {})
+                r = {"scene": name, "width": w, "height": h, "variant": variant,
+                     "triangles": first["triangles"], "rays": w * h, "trace_ms": ms,
+                     "trace_ms_min": min(x["trace_ms"] for x in runs),
+                     "trace_ms_max": max(x["trace_ms"] for x in runs), "rounds": len(runs),
+                     "mrays_per_s": w * h / (ms * 1e3), "ns_per_ray": ms * 1e6 / (w * h),
+                     "build_ms": statistics.median(x["build_ms"] for x in runs)}
+                if grid:
+                    r.update(pes=grid["pes"], depth=grid.get("depth", 0),
+                             grid_memory_mb=grid["memory_bytes"] / 1e6,
+                             peak_host_mib=first.get("memory", {}).get("peak_host_mib"))
+                rows.append(r)
+            base = {r["variant"]: r["trace_ms"] for r in rows
+                    if r["scene"] == name and r["width"] == w}
+            for r in rows:
+                if r["scene"] == name and r["width"] == w:
+                    if "embree 1-ray" in base:
+                        r["vs_embree_1ray"] = r["trace_ms"] / base["embree 1-ray"]
+                    if "embree 16-ray packets" in base:
+                        r["vs_embree_packets"] = r["trace_ms"] / base["embree 16-ray packets"]
+                    r["vs_uniform"] = r["trace_ms"] / base["uniform"]
+            print(f"adaptive {name:14s} {w}x{h}: " + ", ".join(
+                f"{v} {ms:.1f} ms" for v, ms in base.items()) + (
+                f"; adaptive/embree 1-ray {base['adaptive'] / base['embree 1-ray']:.2f}"
+                if "embree 1-ray" in base else ""), flush=True)
+    return rows
+
+
+def chart_adaptive(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 3, figsize=(17, 5))
+    w0, h0 = ADAPTIVE_SIZES[0]
+    small = [r for r in rows if r["width"] == w0]
+    scenes = list(dict.fromkeys(r["scene"] for r in small))
+    series = []
+    for v in ADAPTIVE_VARIANTS:
+        values = [next((r["ns_per_ray"] for r in small if r["scene"] == s and r["variant"] == v),
+                       float("nan")) for s in scenes]
+        series.append((v, values))
+    grouped_bars(axes[0], scenes, series)
+    axes[0].set(yscale="log", ylabel="ns per primary ray", title=f"primary rays, {w0}x{h0}")
+    axes[0].tick_params(axis="x", rotation=45)
+    floors = [("floor_1x", 1), ("floor_10x", 10), ("floor_100x", 100), ("floor_1000x", 1000)]
+    for v in ADAPTIVE_VARIANTS:
+        for w, h in ADAPTIVE_SIZES:
+            pts = [(scale, r["ns_per_ray"]) for name, scale in floors for r in rows
+                   if r["scene"] == name and r["variant"] == v and r["width"] == w]
+            if pts:
+                axes[1].plot(*zip(*pts), marker="o", ls="-" if w == w0 else "--",
+                             label=f"{v} {w}x{h}")
+    axes[1].set(xscale="log", yscale="log", xlabel="floor size / model size",
+                ylabel="ns per primary ray", title="the bunny on a floor")
+    for v in ADAPTIVE_VARIANTS:
+        pts = sorted({(r["triangles"], r["build_ms"]) for r in small if r["variant"] == v})
+        if pts:
+            axes[2].plot(*zip(*pts), marker="o", ls="none", label=v)
+    axes[2].set(xscale="log", yscale="log", xlabel="triangles", ylabel="build ms",
+                title="structure build")
+    for a in axes:
+        a.legend(fontsize=7)
+    fig.suptitle(machine_line().replace("medians of frames after a warm-up",
+                                        "medians of rounds in turns, frames after a warm-up"),
+                 fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
 
 SETS = {"paper": (bench_paper, chart_paper), "scaling": (bench_scaling, chart_scaling),
         "whitted": (bench_whitted, chart_whitted), "targets": (bench_targets, chart_targets),
-        "single": (bench_single, chart_single)}
+        "single": (bench_single, chart_single), "adaptive": (bench_adaptive, chart_adaptive)}
 
 
 def main():
@@ -627,7 +746,7 @@ def main():
     p.add_argument("--frames", type=int, default=7, help="timed frames per figure (median), >= 5")
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
     p.add_argument("--rounds", type=int, default=TARGET_RUNS,
-                   help=f"targets: rounds of every variant in turns (default {TARGET_RUNS}), >= 3")
+                   help=f"targets, adaptive: rounds of every variant in turns (default {TARGET_RUNS}), >= 3")
     a = p.parse_args()
     if a.frames < 5:
         p.error("--frames must be at least 5")
@@ -636,7 +755,7 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     for name in (SETS if a.set == "all" else [a.set]):
         bench, chart = SETS[name]
-        rows = bench_targets(a.frames, a.rounds) if name == "targets" else bench(a.frames)
+        rows = bench(a.frames, a.rounds) if name in ("targets", "adaptive") else bench(a.frames)
         write_csv(os.path.join(a.out, f"{name}.csv"), rows)
         chart(rows, os.path.join(a.out, f"{name}.png"))
         print(f"wrote {a.out}/{name}.csv and {name}.png")

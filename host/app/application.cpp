@@ -1,5 +1,6 @@
 #include "application.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <iostream>
 #include <memory>
 
+#include "adaptive_grid.h"
 #include "brute_intersector.h"
 #include "camera_rays.h"
 #include "cl_runtime.h"
@@ -311,7 +313,8 @@ int runApplication(const Options& given) {
   if (uses_grid) {
     GridSettings settings = o.grid;
     settings.ray_origins = primaryRayOrigins(camera, o.width, o.height);
-    grid = buildUniformGrid(triangles, sceneBounds(scene), settings);
+    if (o.accel == AccelKind::Dda) settings.adaptive = false;  // its kernel walks voxels
+    grid = buildGrid(triangles, sceneBounds(scene), settings);
   }
   double build_ms = clock.ms();
 
@@ -368,7 +371,9 @@ int runApplication(const Options& given) {
     std::vector<int> refs(grid.peCount());
     for (int pe = 0; pe < grid.peCount(); ++pe) refs[pe] = grid.triangleCountOfPe(pe);
     MeanMax r = meanMax(refs);
-    stats["grid"] = {{"dims", {grid.info.nx, grid.info.ny, grid.info.nz}},
+    stats["grid"] = {{"structure", grid.adaptive.empty() ? "uniform" : "adaptive"},
+                     {"depth", grid.adaptive.depth},
+                     {"dims", {grid.info.nx, grid.info.ny, grid.info.nz}},
                      {"voxels", grid.voxelCount()},
                      {"pes", grid.peCount()},
                      {"refs_per_pe_mean", r.mean},
@@ -393,6 +398,13 @@ int runApplication(const Options& given) {
                           {"all_rays", gridrt->allInterrupt()},
                           {"skipped_pairs", c.skipped_pairs}};
   }
+  // Peak memory: the process's resident set (on a CPU device it holds the device buffers
+  // too) and the device buffers' own peak.
+  struct rusage usage {};
+  getrusage(RUSAGE_SELF, &usage);
+  stats["memory"] = {{"peak_host_mib", double(usage.ru_maxrss) / 1024.0},
+                     {"peak_device_buffers_mib", double(runtime.peakBufferBytes()) / 1048576.0},
+                     {"split_batches", c.split_batches}};
   if (!o.stats_json.empty()) writeJsonFile(o.stats_json, stats);
   if (o.stats) std::cout << formatStatisticsTable(stats);
   if (!o.quiet) printSummary(o, frame, median_frame, intersector->name());

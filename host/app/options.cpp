@@ -79,8 +79,10 @@ glm::vec3 parseVec3(const std::string& flag, const std::string& text) {
 }
 
 void parseGrid(const std::string& text, GridSettings& grid) {
-  if (text == "auto") {
+  // auto: the default structure; adaptive / uniform pick one (adaptive_grid.h).
+  if (text == "auto" || text == "adaptive" || text == "uniform") {
     grid.automatic = true;
+    if (text != "auto") grid.adaptive = text == "adaptive";
     return;
   }
   static const std::regex dims(R"(^(\d{1,4}),(\d{1,4}),(\d{1,4})$)");

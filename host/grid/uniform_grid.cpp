@@ -38,10 +38,19 @@ void axisRange(double lo, double hi, double gmin, double cell, double m, int n, 
 
 size_t UniformGrid::memoryBytes() const {
   return pe_of_voxel.size() * sizeof(int) + voxel_of_pe.size() * sizeof(int) +
-         pe_tri_begin.size() * sizeof(int) + pe_triangles.size() * sizeof(GrTriangle);
+         pe_tri_begin.size() * sizeof(int) + pe_triangles.size() * sizeof(GrTriangle) +
+         pe_box.size() * sizeof(float) + adaptive.top.size() * sizeof(int) +
+         adaptive.nodes.size() * sizeof(GridNode) + adaptive.cells.size() * sizeof(int) +
+         adaptive.planes.size() * sizeof(float);
 }
 
 void UniformGrid::voxelBoxOfPe(int pe, glm::vec3& lo, glm::vec3& hi) const {
+  if (!pe_box.empty()) {
+    const float* b = &pe_box[size_t(pe) * 6];
+    lo = glm::vec3(b[0], b[1], b[2]);
+    hi = glm::vec3(b[3], b[4], b[5]);
+    return;
+  }
   const glm::ivec3 v = voxelCoords(voxel_of_pe[pe]);
   const GrGridInfo& g = info;
   lo = glm::vec3(g.minx + float(v.x) * g.cellx, g.miny + float(v.y) * g.celly,
@@ -151,6 +160,16 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
   for (const auto& list : refs)
     for (const auto& r : list) grid.pe_triangles[cursor[r.voxel]++] = triangles[r.triangle];
   grid.info.pe_count = grid.peCount();
+  std::vector<float> boxes(size_t(grid.peCount()) * 6);  // voxelBoxOfPe from the voxels
+  for (int pe = 0; pe < grid.peCount(); ++pe) {
+    glm::vec3 blo, bhi;
+    grid.voxelBoxOfPe(pe, blo, bhi);
+    for (int a = 0; a < 3; ++a) {
+      boxes[size_t(pe) * 6 + a] = blo[a];
+      boxes[size_t(pe) * 6 + 3 + a] = bhi[a];
+    }
+  }
+  grid.pe_box = std::move(boxes);
   return grid;
 }
 

@@ -37,10 +37,36 @@ struct GridSettings {
   float density = kDefaultGridDensity;
   glm::ivec3 dims{1, 1, 1};            // used when !automatic
   double margin_rel = kGridMarginRel;  // tests set 0 to show what the margin prevents
+  bool adaptive = false;               // with automatic: the adaptive structure (adaptive_grid.h)
+  // The adaptive structure splits a leaf holding more triangles than this (adaptive_grid.h:
+  // kMaxLeafTriangles; tests set fewer to reach its deeper levels on small scenes).
+  int max_leaf_triangles = 256;
   // Where rays start outside the scene's box (the camera: primaryRayOrigins). A hit's
   // rounding grows with its ray's origin as much as with the scene's coordinates, so
   // the margin's scale takes these points' coordinates too. Empty: the scene's only.
   Bounds ray_origins;
+};
+
+// A grid below a cell of the adaptive structure (adaptive_grid.h): dims[a] cells on axis
+// a between the planes planes[plane_begin[a] .. plane_begin[a] + dims[a]] (increasing; the
+// first and last are the parent cell's faces, the same floats), cells x fastest from
+// cell_begin, each coded as in AdaptiveCells::top.
+struct GridNode {
+  int dims[3];
+  int plane_begin[3];
+  int cell_begin;
+};
+
+// The adaptive structure's cells (adaptive_grid.h); empty for a uniform grid. A cell's code:
+// -1 empty, >= 0 the PE it belongs to (a leaf, or part of a merged leaf), <= -2 the grid
+// node -(code + 2) below it.
+struct AdaptiveCells {
+  std::vector<int> top;  // per voxel of the top grid (GrGridInfo), x fastest
+  std::vector<GridNode> nodes;
+  std::vector<int> cells;
+  std::vector<float> planes;
+  int depth = 0;  // levels below the top grid
+  bool empty() const { return top.empty(); }
 };
 
 struct UniformGrid {
@@ -51,9 +77,16 @@ struct UniformGrid {
   std::vector<int> pe_tri_begin;         // per PE + 1: CSR offsets into pe_triangles
   std::vector<GrTriangle> pe_triangles;  // per PE, its triangles in increasing global index
   size_t triangle_count = 0;
+  // Per PE its box, lo x, y, z then hi x, y, z: for a uniform grid the voxel with the
+  // 3D-DDA's plane arithmetic (min + k * cell, in float), for the adaptive structure its
+  // leaf (faces on the planes of the grids above it). The kernels take it from here.
+  std::vector<float> pe_box;
+  // The adaptive structure's cells; then pe_of_voxel and voxel_of_pe are empty.
+  AdaptiveCells adaptive;
 
-  int peCount() const { return int(voxel_of_pe.size()); }
-  size_t voxelCount() const { return pe_of_voxel.size(); }
+  int peCount() const { return pe_tri_begin.empty() ? 0 : int(pe_tri_begin.size()) - 1; }
+  // The top grid's voxels.
+  size_t voxelCount() const { return adaptive.empty() ? pe_of_voxel.size() : adaptive.top.size(); }
   int triangleCountOfPe(int pe) const { return pe_tri_begin[pe + 1] - pe_tri_begin[pe]; }
   size_t memoryBytes() const;
   glm::ivec3 voxelCoords(int linear) const;

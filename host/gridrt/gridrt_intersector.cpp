@@ -81,7 +81,7 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
       KernelCall<BundlesKernelArgs>(rt_.program("gridrt_bundles.cl", defines), "gridrt_bundles");
   checkTriangleLayout(grid.pe_triangles, kernel_options);
   pe_tri_begin_.uploadNow(rt_, grid.pe_tri_begin);
-  voxel_of_pe_.uploadNow(rt_, grid.voxel_of_pe);
+  pe_box_.uploadNow(rt_, grid.pe_box);
   pe_triangles_.uploadNow(rt_, grid.pe_triangles);
   std::vector<float> seg_planes;
   computeSegmentCullPlanes(grid.pe_triangles, seg_planes);
@@ -89,6 +89,56 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
   seg_stride_ = int(seg_planes.size() / GR_SEG_PLANES);
   rays_per_pe_.assign(grid.peCount(), 0);
   tests_per_pe_.assign(grid.peCount(), 0);
+  const DeviceInfo& device = rt_.info();
+  setBatchBufferLimit(std::min<unsigned long long>(device.max_alloc_bytes,
+                                                   device.global_mem_bytes / kBatchMemoryShare));
+}
+
+void GridRtIntersector::setBatchBufferLimit(size_t bytes) {
+  batch_buffer_limit_ = std::max<size_t>(bytes, 1);
+  // The bundle results take GR_BUNDLE_RESULT_PLANES floats a lane and a packet's masks.
+  const size_t lane_bytes = GR_BUNDLE_RESULT_PLANES * sizeof(float) + 1;
+  const size_t lanes = std::max<size_t>(batch_buffer_limit_ / lane_bytes, GR_PACKET_LANES);
+  camera_bundles_.max_chunk_lanes = light_bundles_.max_chunk_lanes = lanes;
+}
+
+bool GridRtIntersector::pairsFit(size_t pairs) const {
+  const size_t packets = maxPairPackets(pairs, grid_.peCount());
+  const size_t lanes = packets * GR_PACKET_LANES;
+  const size_t pair_bytes = packets * kPairPacketFloats * sizeof(float);
+  const size_t result_bytes = (GR_LIST_RESULT_PLANES * lanes + 4 * packets) * sizeof(float);
+  return lanes < size_t(INT_MAX) && pair_bytes <= batch_buffer_limit_ &&
+         result_bytes <= batch_buffer_limit_;
+}
+
+void GridRtIntersector::intersectInParts(const std::vector<GrRay>& rays, HitMode mode,
+                                         std::vector<GrHit>& hits, RayDiagnostics* diagnostics) {
+  // Halves in ray order; each half splits again while its pairs do not fit. A ray's hit
+  // depends on its own list only, so the hits are the same as in one batch.
+  const size_t n = rays.size(), half = n / 2;
+  hits.resize(n);
+  if (diagnostics) {
+    diagnostics->tests.assign(n, 0);
+    diagnostics->winning_pe.assign(n, -1);
+    diagnostics->list_length.assign(n, 0);
+  }
+  std::vector<GrRay> part;
+  std::vector<GrHit> part_hits;
+  RayDiagnostics part_diagnostics;
+  for (size_t first : {size_t(0), half}) {
+    const size_t last = first == 0 ? half : n;
+    part.assign(rays.begin() + first, rays.begin() + last);
+    intersect(part, mode, part_hits, diagnostics ? &part_diagnostics : nullptr);
+    std::copy(part_hits.begin(), part_hits.end(), hits.begin() + first);
+    if (diagnostics) {
+      std::copy(part_diagnostics.tests.begin(), part_diagnostics.tests.end(),
+                diagnostics->tests.begin() + first);
+      std::copy(part_diagnostics.winning_pe.begin(), part_diagnostics.winning_pe.end(),
+                diagnostics->winning_pe.begin() + first);
+      std::copy(part_diagnostics.list_length.begin(), part_diagnostics.list_length.end(),
+                diagnostics->list_length.begin() + first);
+    }
+  }
 }
 
 void GridRtIntersector::runPes(size_t n, HitMode mode) {
@@ -174,6 +224,12 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   hits.resize(n);
   Stopwatch clock;
   computeTraversalLists(grid_, rays.data(), n, lists_);
+  if (n > 1 && !pairsFit(lists_.entries.size())) {
+    counters_.lists_ms += clock.ms();
+    ++counters_.split_batches;
+    intersectInParts(rays, mode, hits, diagnostics);
+    return;
+  }
   // The pairs go straight into the device buffer, left mapped by the previous batch.
   const size_t pair_floats =
       maxPairPackets(lists_.entries.size(), grid_.peCount()) * kPairPacketFloats;
@@ -436,110 +492,130 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       writeStarts(b, r >= 0 ? rays[r] : common);
     }
   }
-  const size_t lanes = bundles.out_lanes, packets = lanes / GR_PACKET_LANES;
-  rt_.runWithHostThreadsAsleep([&] {
-    enqueueUnmaps();
-    enqueuePlanesUnmap();
-    if (bundles.tasks.empty()) return;
-    bundle_tasks_.upload(rt_, bundles.tasks);
-    // t, prim, u, v per lane, then the packets' masks (4 ints each): one buffer.
-    const size_t result_floats = GR_BUNDLE_RESULT_PLANES * lanes + 4 * packets;
-    results_.reserve(rt_, result_floats);
-    first_hit_key_.reserve(rt_, stride);
-    if (interrupt)
-      rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, stride * sizeof(int));
-    BundlesKernelArgs args;
-    args.tasks = bundle_tasks_.get();
-    args.planes = planes_.get();
-    args.stride = int(stride);
-    args.common_origin = common_origin ? 1 : 0;
-    args.common = common;
-    args.grid = grid_.info;
-    args.voxel_of_pe = voxel_of_pe_.get();
-    args.pe_tri_begin = pe_tri_begin_.get();
-    args.pe_tris = pe_triangles_.get();
-    args.results = results_.get();
-    args.lanes = int(lanes);
-    args.first_hit_key = first_hit_key_.get();
-    args.any_hit = mode == HitMode::AnyHit ? 1 : 0;
-    args.interrupt = interrupt ? 1 : 0;
-    args.cull = prepareCulling(check_cover && uncovered == 0 && common_origin, frame, common);
-    packet_culling_used_ = args.cull.enabled != 0.0f;
-    args.cull_planes = cull_planes_.reserve(rt_, 1);
-    args.cull_stride = int(cull_cache_.stride());
-    args.seg_planes = seg_planes_.get();
-    args.seg_stride = seg_stride_;
-    bundle_kernel_.enqueue(rt_.queue(), cl::NDRange(bundles.tasks.size() * kPeLocalSize),
-                           cl::NDRange(kPeLocalSize), args);
-    results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
-    // Mapped again for the next bundle batch once the kernel has read it.
-    planes_map_ =
-        mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION, planes_.capacity());
-  });
-  const PacketResults results(results_map_, lanes, GR_BUNDLE_RESULT_PLANES);
-  counters_.kernel_ms += clock.ms();
-
-  // Phase 2: per ray, the smallest (t, prim) over its PEs' in-voxel hits
-  // (PacketResults::keepNearer). Each thread owns a range of bundle order and reads the
-  // part of every task that falls in it.
-  clock.restart();
-  if (diagnostics) {
-    diagnostics->tests.assign(n, 0);
-    diagnostics->winning_pe.assign(n, -1);
-    diagnostics->list_length.assign(n, 0);
-  }
+  // The tasks run in chunks whose results fit the device (RayBundles::chunk_begin): each
+  // chunk's kernel, then its part of phase 2. The planes stay on the device until the
+  // last chunk has read them; the hits of later chunks go on from those of earlier ones.
   const int threads = omp_get_max_threads();
   thread_pe_pairs_.resize(threads);
   uint64_t tests = 0, tests_run = 0, skipped = 0, pairs = 0;
-  const auto& tasks = bundles.tasks;
   std::vector<int>* winners = diagnostics ? &diagnostics->winning_pe : nullptr;
+  GrCullFrame culling{};
+  const size_t chunks = bundles.chunkCount();
+  if (chunks > 1) ++counters_.split_batches;
+  for (size_t chunk = 0; chunk < chunks; ++chunk) {
+    const bool first_chunk = chunk == 0, last_chunk = chunk + 1 == chunks;
+    const GrBundleTask* chunk_tasks = bundles.tasks.data() + bundles.chunk_begin[chunk];
+    const size_t task_count = bundles.chunk_begin[chunk + 1] - bundles.chunk_begin[chunk];
+    const size_t lanes = bundles.chunk_lanes[chunk], packets = lanes / GR_PACKET_LANES;
+    if (!first_chunk) clock.restart();
+    rt_.runWithHostThreadsAsleep([&] {
+      enqueueUnmaps();
+      if (first_chunk) enqueuePlanesUnmap();
+      if (task_count == 0) return;
+      bundle_tasks_.upload(rt_, chunk_tasks, task_count);
+      // t, prim, u, v per lane, then the packets' masks (4 ints each): one buffer.
+      const size_t result_floats = GR_BUNDLE_RESULT_PLANES * lanes + 4 * packets;
+      results_.reserve(rt_, result_floats);
+      first_hit_key_.reserve(rt_, stride);
+      if (interrupt && first_chunk)
+        rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, stride * sizeof(int));
+      if (first_chunk) {
+        culling = prepareCulling(check_cover && uncovered == 0 && common_origin, frame, common);
+        packet_culling_used_ = culling.enabled != 0.0f;
+      }
+      BundlesKernelArgs args;
+      args.tasks = bundle_tasks_.get();
+      args.planes = planes_.get();
+      args.stride = int(stride);
+      args.common_origin = common_origin ? 1 : 0;
+      args.common = common;
+      args.grid = grid_.info;
+      args.pe_box = pe_box_.get();
+      args.pe_tri_begin = pe_tri_begin_.get();
+      args.pe_tris = pe_triangles_.get();
+      args.results = results_.get();
+      args.lanes = int(lanes);
+      args.first_hit_key = first_hit_key_.get();
+      args.any_hit = mode == HitMode::AnyHit ? 1 : 0;
+      args.interrupt = interrupt ? 1 : 0;
+      args.cull = culling;
+      args.cull_planes = cull_planes_.reserve(rt_, 1);
+      args.cull_stride = int(cull_cache_.stride());
+      args.seg_planes = seg_planes_.get();
+      args.seg_stride = seg_stride_;
+      bundle_kernel_.enqueue(rt_.queue(), cl::NDRange(task_count * kPeLocalSize),
+                             cl::NDRange(kPeLocalSize), args);
+      results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
+      // Mapped again for the next bundle batch once the kernel has read it.
+      if (last_chunk)
+        planes_map_ = mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
+                                       planes_.capacity());
+    });
+    const PacketResults results(results_map_, lanes, GR_BUNDLE_RESULT_PLANES);
+    counters_.kernel_ms += clock.ms();
+
+    // Phase 2: per ray, the smallest (t, prim) over its PEs' in-voxel hits
+    // (PacketResults::keepNearer). Each thread owns a range of bundle order and reads the
+    // part of every task that falls in it.
+    clock.restart();
+    if (diagnostics && first_chunk) {
+      diagnostics->tests.assign(n, 0);
+      diagnostics->winning_pe.assign(n, -1);
+      diagnostics->list_length.assign(n, 0);
+    }
 #pragma omp parallel num_threads(threads) reduction(+ : tests, tests_run, skipped, pairs)
-  {
-    const int me = omp_get_thread_num(), count = omp_get_num_threads();
-    std::vector<int>& pe_pairs = thread_pe_pairs_[me];
-    pe_pairs.assign(grid_.peCount(), 0);
-    const size_t chunk = (slots / GR_PACKET_LANES + count - 1) / count * GR_PACKET_LANES;
-    const long long lo = (long long)std::min(slots, size_t(me) * chunk);
-    const long long hi = (long long)std::min(slots, size_t(lo) + chunk);
-    // Every ray a miss to begin with, written in ray order (in bundle order it would be a
-    // scatter); the loop's barrier comes before the hits below.
+    {
+      const int me = omp_get_thread_num(), count = omp_get_num_threads();
+      std::vector<int>& pe_pairs = thread_pe_pairs_[me];
+      if (first_chunk) pe_pairs.assign(grid_.peCount(), 0);
+      const size_t span = (slots / GR_PACKET_LANES + count - 1) / count * GR_PACKET_LANES;
+      const long long lo = (long long)std::min(slots, size_t(me) * span);
+      const long long hi = (long long)std::min(slots, size_t(lo) + span);
+      // Every ray a miss to begin with, written in ray order (in bundle order it would be a
+      // scatter); the loop's barrier comes before the hits below.
+      if (first_chunk) {
 #pragma omp for schedule(static)
-    for (long long r = 0; r < (long long)n; ++r)
-      hits[r] = GrHit{common_origin ? common.tmax : rays[r].tmax, -1, 0.0f, 0.0f};
-    // Bundle order maps to distinct rays, so the threads write disjoint hits.
-    for (const GrBundleTask& task : tasks) {
-      const long long first = std::max<long long>(task.first_ray, lo);
-      const long long last = std::min<long long>(task.first_ray + task.ray_count, hi);
-      if (first >= last) continue;
-      const int cost = grid_.triangleCountOfPe(task.pe);
-      for (int p = int(first - task.first_ray) / GR_PACKET_LANES;
-           p * GR_PACKET_LANES < last - task.first_ray; ++p) {
-        const long long base = task.first_ray + p * GR_PACKET_LANES;
-        // The lanes of this packet inside [first, last).
-        int in_range = 0xFFFF;
-        if (base < first) in_range &= 0xFFFF << int(first - base);
-        if (base + GR_PACKET_LANES > last) in_range &= 0xFFFF >> int(base + GR_PACKET_LANES - last);
-        const GrPacketMasks& m = results.masks[task.out_first / GR_PACKET_LANES + p];
-        // A packet's tests count in the thread whose range holds its first lane.
-        if (base >= lo) tests_run += uint64_t(m.tests);
-        const int pierced = m.pierced & in_range, tested = pierced & ~m.skipped;
-        if (!pierced) continue;
-        pairs += popcount(pierced);
-        skipped += popcount(pierced & m.skipped);
-        tests += uint64_t(popcount(tested)) * cost;
-        pe_pairs[task.pe] += popcount(pierced);
-        if (diagnostics)
-          for (int bits = pierced; bits; bits &= bits - 1) {
-            const int k = __builtin_ctz(unsigned(bits));
-            const int ray = bundles.ray_of[base + k];
-            ++diagnostics->list_length[ray];
-            if (tested & (1 << k)) diagnostics->tests[ray] += cost;
-          }
-        results.reduceHits(
-            m.hit & in_range, size_t(task.out_first + p * GR_PACKET_LANES), task.pe,
-            [&](int lane) { return bundles.ray_of[base + lane]; }, hits, winners);
+        for (long long r = 0; r < (long long)n; ++r)
+          hits[r] = GrHit{common_origin ? common.tmax : rays[r].tmax, -1, 0.0f, 0.0f};
+      }
+      // Bundle order maps to distinct rays, so the threads write disjoint hits.
+      for (size_t t = 0; t < task_count; ++t) {
+        const GrBundleTask& task = chunk_tasks[t];
+        const long long first = std::max<long long>(task.first_ray, lo);
+        const long long last = std::min<long long>(task.first_ray + task.ray_count, hi);
+        if (first >= last) continue;
+        const int cost = grid_.triangleCountOfPe(task.pe);
+        for (int p = int(first - task.first_ray) / GR_PACKET_LANES;
+             p * GR_PACKET_LANES < last - task.first_ray; ++p) {
+          const long long base = task.first_ray + p * GR_PACKET_LANES;
+          // The lanes of this packet inside [first, last).
+          int in_range = 0xFFFF;
+          if (base < first) in_range &= 0xFFFF << int(first - base);
+          if (base + GR_PACKET_LANES > last)
+            in_range &= 0xFFFF >> int(base + GR_PACKET_LANES - last);
+          const GrPacketMasks& m = results.masks[task.out_first / GR_PACKET_LANES + p];
+          // A packet's tests count in the thread whose range holds its first lane.
+          if (base >= lo) tests_run += uint64_t(m.tests);
+          const int pierced = m.pierced & in_range, tested = pierced & ~m.skipped;
+          if (!pierced) continue;
+          pairs += popcount(pierced);
+          skipped += popcount(pierced & m.skipped);
+          tests += uint64_t(popcount(tested)) * cost;
+          pe_pairs[task.pe] += popcount(pierced);
+          if (diagnostics)
+            for (int bits = pierced; bits; bits &= bits - 1) {
+              const int k = __builtin_ctz(unsigned(bits));
+              const int ray = bundles.ray_of[base + k];
+              ++diagnostics->list_length[ray];
+              if (tested & (1 << k)) diagnostics->tests[ray] += cost;
+            }
+          results.reduceHits(
+              m.hit & in_range, size_t(task.out_first + p * GR_PACKET_LANES), task.pe,
+              [&](int lane) { return bundles.ray_of[base + lane]; }, hits, winners);
+        }
       }
     }
+    if (!last_chunk) counters_.reduce_ms += clock.ms();
   }
   if (diagnostics) {
     list_length_known_ = true;

@@ -33,6 +33,9 @@ constexpr size_t kMinLightBundleRays = 8192;
 // with a fine grid: every near voxel covers a wide cone) also fall back to the lists,
 // whose cost follows the real (ray, PE) pairs.
 constexpr size_t kMaxLightBundleLanesPerRay = 64;
+// One batch's pairs or results buffer takes at most this share of the device's global
+// memory (the batch holds a few buffers of that order at once: rays, pairs, results).
+constexpr unsigned long long kBatchMemoryShare = 4;
 
 // The batches whose PEs emulate the paper's interrupt chain on the device: a PE skips a
 // ray once an earlier PE of the ray's list has a hit. The hits are the same either way.
@@ -76,6 +79,12 @@ class GridRtIntersector : public Intersector {
   // Which batches run with the interrupt chain.
   bool cameraInterrupt() const { return interrupt_ != PeInterrupt::Off; }
   bool allInterrupt() const { return interrupt_ == PeInterrupt::AllRays; }
+  // The most bytes one batch's pairs or results buffer may take: by default the device's
+  // largest buffer (CL_DEVICE_MAX_MEM_ALLOC_SIZE), at most 1 / kBatchMemoryShare of its
+  // global memory. A batch that would need more runs in parts (bundle tasks in chunks,
+  // list batches split by rays) with the same hits; tests set a small limit.
+  void setBatchBufferLimit(size_t bytes);
+  size_t batchBufferLimit() const { return batch_buffer_limit_; }
   // Whether the last bundle batch ran with packet culling (for tests).
   bool packetCullingUsed() const { return packet_culling_used_; }
 
@@ -110,7 +119,7 @@ class GridRtIntersector : public Intersector {
     int stride, common_origin;
     GrRay common;
     GrGridInfo grid;
-    cl::Buffer voxel_of_pe, pe_tri_begin, pe_tris, results;
+    cl::Buffer pe_box, pe_tri_begin, pe_tris, results;
     int lanes;
     cl::Buffer first_hit_key;
     int any_hit, interrupt;
@@ -120,7 +129,7 @@ class GridRtIntersector : public Intersector {
     cl::Buffer seg_planes;
     int seg_stride;
     auto inOrder() const {
-      return std::tie(tasks, planes, stride, common_origin, common, grid, voxel_of_pe, pe_tri_begin,
+      return std::tie(tasks, planes, stride, common_origin, common, grid, pe_box, pe_tri_begin,
                       pe_tris, results, lanes, first_hit_key, any_hit, interrupt, cull, cull_planes,
                       cull_stride, seg_planes, seg_stride);
     }
@@ -145,6 +154,13 @@ class GridRtIntersector : public Intersector {
   std::vector<uint64_t> rays_per_pe_, tests_per_pe_;
   uint64_t max_list_length_ = 0;
   bool list_length_known_ = true;
+  size_t batch_buffer_limit_ = 0;
+  // Whether a list batch of `pairs` pairs fits batch_buffer_limit_ and int lane indices.
+  bool pairsFit(size_t pairs) const;
+  // A list batch too large for the device, traced in two halves of its rays (each split
+  // again as needed).
+  void intersectInParts(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
+                        RayDiagnostics* diagnostics);
 
   // Phase 1: runs one work-group per task (bins_.tasks) on the batch's pair packets,
   // already in entries_ through entries_map_ (with their rays); results_map_ maps their
@@ -188,7 +204,7 @@ class GridRtIntersector : public Intersector {
   // Segment culling: the PE triangles' planes (segment_culling.h), uploaded once.
   DeviceBuffer<float> seg_planes_{"the segment culling planes", CL_MEM_READ_ONLY};
   int seg_stride_ = 0;
-  DeviceBuffer<int> voxel_of_pe_{"the PE voxels", CL_MEM_READ_ONLY};
+  DeviceBuffer<float> pe_box_{"the PE boxes", CL_MEM_READ_ONLY};
   DeviceBuffer<float> planes_{"the ray bundle", CL_MEM_READ_ONLY};
   DeviceBuffer<GrBundleTask> bundle_tasks_{"the bundle tasks", CL_MEM_READ_ONLY};
   // Phase 1's results of either path (GR_RESULT_*): planes per lane, then packet masks.

@@ -35,6 +35,7 @@ struct IntersectCounters {
   double lists_ms = 0;         // traversal lists and binning on the host
   double kernel_ms = 0;        // upload + kernel + download
   double reduce_ms = 0;        // phase-2 reduction on the host
+  uint64_t split_batches = 0;  // batches too large for the device, run in parts (gridrt)
 };
 
 // Per-ray diagnostics for AOVs, filled when requested.

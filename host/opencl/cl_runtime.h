@@ -2,6 +2,7 @@
 // queue and the programs built for it (RAII through opencl.hpp's reference counting).
 #pragma once
 #include <CL/opencl.hpp>
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <string>
@@ -59,6 +60,13 @@ class ClRuntime {
 
   // Throws RenderError naming `what` if a buffer of `bytes` exceeds the device's limits.
   void checkAllocation(size_t bytes, const std::string& what) const;
+  // The bytes of the device buffers made through DeviceBuffer (a buffer that grows
+  // replaces its old one), and the most they ever were at once.
+  void noteBufferResize(size_t old_bytes, size_t new_bytes) {
+    buffer_bytes_ += new_bytes - old_bytes;
+    peak_buffer_bytes_ = std::max(peak_buffer_bytes_, buffer_bytes_);
+  }
+  size_t peakBufferBytes() const { return peak_buffer_bytes_; }
 
   // Calls `enqueue` (OpenCL commands; a blocking one is fine) on this thread and waits for
   // everything queued, with the host's other OpenMP threads asleep from before the first
@@ -79,6 +87,7 @@ class ClRuntime {
   ProgramBinaryCache binaries_;
   std::string device_identity_;  // platform, device and driver versions: part of a cache key
   int programs_loaded_ = 0, programs_compiled_ = 0;
+  size_t buffer_bytes_ = 0, peak_buffer_bytes_ = 0;
 };
 
 // A one-line description of an OpenCL error code (e.g. "CL_OUT_OF_RESOURCES").

@@ -21,6 +21,7 @@ class DeviceBuffer {
       size_t grown = std::max(count, capacity_ + capacity_ / 2);
       rt.checkAllocation(grown * sizeof(T), what_);
       buffer_ = cl::Buffer(rt.context(), flags_, grown * sizeof(T));
+      rt.noteBufferResize(capacity_ * sizeof(T), grown * sizeof(T));
       capacity_ = grown;
     }
     return buffer_;

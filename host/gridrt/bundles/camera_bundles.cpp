@@ -53,6 +53,89 @@ void extentInBand(const glm::dvec2 (&c)[8], double a, double b, double& lo, doub
   }
 }
 
+// The x extent inside the rows a <= y <= b of a convex polygon (its vertices in order):
+// the vertices in the band and the points where its edges cross the band's two lines.
+void extentInBandOfPolygon(const std::vector<glm::dvec2>& poly, double a, double b, double& lo,
+                           double& hi) {
+  lo = INFINITY;
+  hi = -INFINITY;
+  const size_t n = poly.size();
+  for (size_t k = 0; k < n; ++k) {
+    const glm::dvec2 &p = poly[k], &q = poly[(k + 1) % n];
+    if (p.y >= a && p.y <= b) {
+      lo = std::min(lo, p.x);
+      hi = std::max(hi, p.x);
+    }
+    for (double y : {a, b})
+      if ((p.y - y) * (q.y - y) < 0.0) {
+        double x = p.x + (q.x - p.x) * ((y - p.y) / (q.y - p.y));
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+      }
+  }
+}
+
+// The outline of the part of a box in front of the camera that the image can see, for a
+// box some corner of which lies at or behind the camera plane. Every point of the box
+// whose direction lies within twice the image's half extents (tx, ty: tan of the half
+// angles) and whose depth -z is below delta = 0.25 * dist / sqrt(1 + tx^2 + ty^2) would lie
+// nearer the eye than |p| < delta * sqrt(1 + 4 tx^2 + 4 ty^2) <= 0.5 * dist, closer than the
+// box (dist: the eye's distance to the box), so none exists: the pixels' rays meet the box
+// only at depths >= delta, and the outline is the convex hull of the projected part of the
+// box at depth >= delta (its corners there and its edges' crossings of that plane). False
+// when the eye lies in the box: the footprint is then unbounded. An empty hull: no pixel
+// sees the box (it lies wholly behind the plane at depth delta).
+bool projectClippedBox(const PinholeView& v, const glm::vec3& lo, const glm::vec3& hi,
+                       std::vector<glm::dvec2>& hull) {
+  hull.clear();
+  const glm::dvec3 eye = glm::dvec3(glm::inverse(v.exact_world_to_camera)[3]);
+  const glm::dvec3 dlo(lo), dhi(hi);
+  const double dist = glm::length(glm::max(glm::max(dlo - eye, eye - dhi), glm::dvec3(0.0)));
+  if (!(dist > 0.0)) return false;
+  const double tx = double(v.tan_half) * v.aspect, ty = v.tan_half;
+  const double delta = 0.25 * dist / std::sqrt(1.0 + tx * tx + ty * ty);
+  glm::dvec3 p[8];
+  for (int c = 0; c < 8; ++c) {
+    glm::dvec3 corner(c & 1 ? dhi.x : dlo.x, c & 2 ? dhi.y : dlo.y, c & 4 ? dhi.z : dlo.z);
+    p[c] = glm::dvec3(v.exact_world_to_camera * glm::dvec4(corner, 1.0));
+  }
+  auto project = [&](const glm::dvec3& q) {
+    double x = q.x / (-q.z) / tx, y = q.y / (-q.z) / ty;
+    return glm::dvec2((x + 1.0) * 0.5 * v.width - 0.5, (1.0 - y) * 0.5 * v.height - 0.5);
+  };
+  std::vector<glm::dvec2> points;
+  for (int c = 0; c < 8; ++c)
+    if (p[c].z <= -delta) points.push_back(project(p[c]));
+  for (const auto& e : kBoxEdges) {
+    const glm::dvec3 &a = p[e[0]], &b = p[e[1]];
+    if ((a.z + delta) * (b.z + delta) < 0.0) {
+      glm::dvec3 q = a + (b - a) * ((-delta - a.z) / (b.z - a.z));
+      q.z = -delta;
+      points.push_back(project(q));
+    }
+  }
+  if (points.empty()) return true;
+  // Convex hull (Andrew's monotone chain), counter-clockwise.
+  std::sort(points.begin(), points.end(), [](const glm::dvec2& a, const glm::dvec2& b) {
+    return a.x < b.x || (a.x == b.x && a.y < b.y);
+  });
+  auto cross = [](const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
+    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+  };
+  hull.assign(2 * points.size(), glm::dvec2(0.0));
+  size_t k = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
+    hull[k++] = points[i];
+  }
+  for (size_t i = points.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(std::max<size_t>(k > 1 ? k - 1 : k, 1));
+  return true;
+}
+
 }  // namespace
 
 double cameraOutlineMargin(const PinholeView& view) {
@@ -114,20 +197,31 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   {
     std::vector<TileRun>& runs = thread_runs[omp_get_thread_num()];
     runs.clear();
+    std::vector<glm::dvec2> hull;
 #pragma omp for schedule(static)
     for (int k = 0; k < pes; ++k) {
       const int pe = order[k].second;
       glm::vec3 lo, hi;
       grid.voxelBoxOfPe(pe, lo, hi);
       glm::dvec2 corners[8];
-      if (!projectCorners(view, lo, hi, corners)) {
+      const bool whole = projectCorners(view, lo, hi, corners);
+      // A box reaching behind the camera plane: the outline of its visible part.
+      if (!whole && !projectClippedBox(view, lo, hi, hull)) {
         for (int ty = 0; ty < tiles_y; ++ty) runs.push_back(TileRun{pe, ty, 0, tiles_x});
         continue;
       }
+      if (!whole && hull.empty()) continue;  // wholly behind the camera
       double ymin = INFINITY, ymax = -INFINITY;
-      for (const glm::dvec2& c : corners) {
-        ymin = std::min(ymin, c.y);
-        ymax = std::max(ymax, c.y);
+      if (whole) {
+        for (const glm::dvec2& c : corners) {
+          ymin = std::min(ymin, c.y);
+          ymax = std::max(ymax, c.y);
+        }
+      } else {
+        for (const glm::dvec2& c : hull) {
+          ymin = std::min(ymin, c.y);
+          ymax = std::max(ymax, c.y);
+        }
       }
       // Tile rows in reach (clamped in double first: a corner near the camera plane
       // projects far outside int range).
@@ -140,7 +234,10 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
         const double a = double(win.y0 + ty * kTileSize) - margin;
         const double b = double(win.y0 + ty * kTileSize + kTileSize - 1) + margin;
         double x0, x1;
-        extentInBand(corners, a, b, x0, x1);
+        if (whole)
+          extentInBand(corners, a, b, x0, x1);
+        else
+          extentInBandOfPolygon(hull, a, b, x0, x1);
         if (!(x0 <= x1)) continue;
         int tx0 = clampTo(std::floor((x0 - margin - win.x0) / kTileSize), 0, tiles_x);
         int tx1 = clampTo(std::floor((x1 + margin - win.x0) / kTileSize) + 1.0, 0, tiles_x);

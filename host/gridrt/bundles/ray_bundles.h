@@ -22,6 +22,17 @@ struct RayBundles {
   std::vector<int> ray_of;
   std::vector<GrBundleTask> tasks;
   size_t out_lanes = 0;  // result lanes of all tasks (each task's rounded up to a packet)
+  // The tasks in runs of consecutive tasks (chunks), each run on the device on its own,
+  // with results of at most max_chunk_lanes lanes: chunk c holds the tasks
+  // [chunk_begin[c], chunk_begin[c + 1]) and their out_first counts from the chunk's first
+  // lane. The intersector sets the limit from the device's buffer limits.
+  std::vector<size_t> chunk_begin{0, 0};
+  std::vector<size_t> chunk_lanes{0};
+  size_t max_chunk_lanes = kMaxChunkLanes;
+  size_t chunkCount() const { return chunk_lanes.size(); }
+  // Lanes are indexed with int on the device (less a task's worth of room).
+  static constexpr size_t kMaxChunkLanes =
+      (size_t(1) << 31) - 2 * kMaxTaskPackets * GR_PACKET_LANES;
 
   // Queues PE `pe` for the bundle rays [first, first + count), split into tasks of at
   // most kMaxTaskPackets packets, each with its own result lanes.
@@ -29,6 +40,8 @@ struct RayBundles {
   void clearTasks() {
     tasks.clear();
     out_lanes = 0;
+    chunk_begin.assign({0, 0});
+    chunk_lanes.assign({0});
   }
 };
 

@@ -5,12 +5,17 @@
 #include <algorithm>
 #include <cstring>
 
+#include "adaptive_lists.h"
 #include "dda_packet.h"
 
 namespace gridrt {
 
 void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t count,
                            TraversalLists& lists) {
+  if (!grid.adaptive.empty()) {
+    computeAdaptiveLists(grid, rays, count, lists);
+    return;
+  }
   // Chunks handed out dynamically (list lengths vary a lot across a batch), each with its
   // own output, copied out in chunk order.
   const size_t chunks = (count + kListChunkRays - 1) / kListChunkRays;

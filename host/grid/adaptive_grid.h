@@ -1,0 +1,48 @@
+// The adaptive structure of GridRT: a grid that models no more than the scene needs, with
+// the architecture unchanged (its leaves are the PEs, each with its own box and triangles;
+// rays meet them in order along the ray, docs/adaptive-grid.md).
+//
+// - The top level is the uniform grid of the automatic resolution (uniform_grid.h).
+// - A cell holding more than kMaxLeafTriangles triangles gets a grid of its own, its
+//   resolution from its own triangle count and shape (autoGridResolution with the same
+//   density), recursively up to kMaxAdaptiveDepth levels below the top (the two-level grid
+//   of Kalojanov, Billeter and Slusallek 2011, made multi-level for a model small in a
+//   large cell, the "teapot in a stadium").
+// - Neighbouring top cells that are leaves merge into one leaf whose box is their union
+//   (the merging step of Perard-Gayot, Kalojanov and Slusallek's irregular grids, 2017),
+//   greedily along x, then y, then z, while the merged leaf holds the same triangles as
+//   each of its cells or at most kMergeMaxTriangles (a floor, a huge triangle, a wall:
+//   their cells hold one or both of a quad's two triangles).
+// A triangle is listed in a leaf when it overlaps the leaf's box grown by the grid's
+// margin (exact separating-axis test), as in the uniform grid. A leaf's faces are planes of
+// the grids above it, stored once as floats, so two leaves sharing a face share its float
+// and its distance along every ray bit for bit.
+#pragma once
+#include <vector>
+
+#include "uniform_grid.h"
+
+namespace gridrt {
+
+// A leaf holding more triangles than this is split (when its grid would have more than
+// one cell): GridSettings::max_leaf_triangles' default. Measured (docs/adaptive-grid.md):
+// above the fullest voxel of the full bunny's auto grid (179), so the even scenes keep
+// their grid.
+constexpr int kMaxLeafTriangles = 256;
+static_assert(GridSettings{}.max_leaf_triangles == kMaxLeafTriangles, "one default");
+// Merged top leaves hold at most this many triangles (unless every cell holds the same).
+constexpr int kMergeMaxTriangles = 8;
+// Levels of grids below the top grid at most.
+constexpr int kMaxAdaptiveDepth = 3;
+
+// Builds the adaptive structure over `triangles` (global order); settings as for
+// buildUniformGrid (automatic resolution for the top grid). Runs on all cores.
+UniformGrid buildAdaptiveGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
+                              const GridSettings& settings);
+
+// The grid the settings ask for: adaptive when settings.adaptive and automatic, else
+// uniform.
+UniformGrid buildGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
+                      const GridSettings& settings);
+
+}  // namespace gridrt

@@ -1,0 +1,123 @@
+#include "adaptive_lists.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "grid_dda.h"
+
+namespace gridrt {
+
+namespace {
+
+struct Walk {
+  const UniformGrid& grid;
+  std::vector<ListEntry>& out;
+  size_t first;  // the ray's first entry in out
+  float o[3], d[3], inv[3];
+  int step[3];
+
+  // A leaf from t_enter to t_exit: joins the previous entry when that is the same PE
+  // ending where this begins (a merged leaf met in its next cell).
+  void emit(int pe, float t_enter, float t_exit) {
+    if (out.size() > first && out.back().pe == pe && out.back().t_exit == t_enter) {
+      out.back().t_exit = t_exit;
+      return;
+    }
+    out.push_back({pe, t_enter, t_exit});
+  }
+
+  void cell(int code, float t_enter, float t_exit) {
+    if (code >= 0)
+      emit(code, t_enter, t_exit);
+    else if (code <= -2)
+      node(-(code + 2), t_enter, t_exit);
+  }
+
+  // The cells of grid node `n` from t0 to t1 (the interval of its cell above).
+  void node(int n, float t0, float t1) {
+    const GridNode& g = grid.adaptive.nodes[n];
+    const float* p[3];
+    int i[3];
+    float tn[3];
+    for (int a = 0; a < 3; ++a) {
+      p[a] = grid.adaptive.planes.data() + g.plane_begin[a];
+      // The entry cell: where the ray is at t0 among the inner planes, clamped.
+      const float x = step[a] != 0 ? o[a] + t0 * d[a] : o[a];
+      i[a] = int(std::upper_bound(p[a] + 1, p[a] + g.dims[a], x) - (p[a] + 1));
+      tn[a] = next(a, p[a], i[a]);
+    }
+    const size_t before = out.size();
+    float t_enter = t0, t_exit = t0;
+    for (;;) {
+      t_exit = std::min(std::min(tn[0], tn[1]), std::min(tn[2], t1));
+      t_exit = std::max(t_exit, t_enter);
+      cell(grid.adaptive.cells[g.cell_begin + i[0] + g.dims[0] * (i[1] + g.dims[1] * i[2])],
+           t_enter, t_exit);
+      if (t_exit >= t1) break;
+      // One axis at a time, x before y before z on ties (as the 3D-DDA).
+      const int a = tn[0] <= tn[1] && tn[0] <= tn[2] ? 0 : tn[1] <= tn[2] ? 1 : 2;
+      i[a] += step[a];
+      if (i[a] < 0 || i[a] >= g.dims[a]) break;
+      tn[a] = next(a, p[a], i[a]);
+      t_enter = t_exit;
+    }
+    // Left the node before t1 (its entry cell found a rounding off): the last cell covers
+    // the rest of the interval, so no distance of the ray falls between two entries.
+    if (t_exit < t1 && out.size() > before && out.back().t_exit == t_exit) out.back().t_exit = t1;
+  }
+
+  float next(int a, const float* p, int i) const {
+    if (step[a] == 0) return GR_INF;
+    return (p[step[a] > 0 ? i + 1 : i] - o[a]) * inv[a];
+  }
+};
+
+}  // namespace
+
+void adaptiveList(const UniformGrid& grid, const GrRay& ray, std::vector<ListEntry>& out) {
+  const GrGridInfo& g = grid.info;
+  GrDda s;
+  if (!gr_dda_begin(&g, ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, ray.tmin, ray.tmax, &s))
+    return;
+  Walk w{grid,
+         out,
+         out.size(),
+         {s.ox, s.oy, s.oz},
+         {ray.dx, ray.dy, ray.dz},
+         {s.idx, s.idy, s.idz},
+         {s.sx, s.sy, s.sz}};
+  do {
+    w.cell(grid.adaptive.top[s.ix + g.nx * (s.iy + g.ny * s.iz)], s.t_enter, s.t_exit);
+  } while (gr_dda_step(&g, &s));
+}
+
+void computeAdaptiveLists(const UniformGrid& grid, const GrRay* rays, size_t count,
+                          TraversalLists& lists) {
+  const size_t chunks = (count + kListChunkRays - 1) / kListChunkRays;
+  if (lists.scratch.size() < chunks) lists.scratch.resize(chunks);
+  lists.begin.resize(count + 1);
+  lists.begin[0] = 0;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long long chunk = 0; chunk < (long long)chunks; ++chunk) {
+    auto& out = lists.scratch[chunk];
+    out.clear();
+    const size_t first = size_t(chunk) * kListChunkRays;
+    const size_t last = std::min(count, first + kListChunkRays);
+    for (size_t r = first; r < last; ++r) {
+      const size_t before = out.size();
+      adaptiveList(grid, rays[r], out);
+      lists.begin[r + 1] = int(out.size() - before);  // a count for now
+    }
+  }
+  for (size_t r = 0; r < count; ++r) lists.begin[r + 1] += lists.begin[r];
+  lists.entries.resize(lists.begin[count]);
+#pragma omp parallel for schedule(static)
+  for (long long chunk = 0; chunk < (long long)chunks; ++chunk) {
+    const auto& out = lists.scratch[chunk];
+    if (!out.empty())
+      std::memcpy(&lists.entries[lists.begin[size_t(chunk) * kListChunkRays]], out.data(),
+                  out.size() * sizeof(ListEntry));
+  }
+}
+
+}  // namespace gridrt

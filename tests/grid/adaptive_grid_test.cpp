@@ -1,0 +1,156 @@
+// The adaptive structure (host/grid/adaptive_grid.h) and its traversal lists
+// (host/gridrt/lists/adaptive_lists.h) against brute force: every leaf holds exactly the
+// triangles that overlap its box grown by the grid's margin, leaves never overlap, and a
+// ray's list puts every point of the ray that lies inside a leaf in an entry of that leaf.
+#include "adaptive_grid.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "adaptive_lists.h"
+#include "gltf_loader.h"
+#include "prepared_triangles.h"
+#include "test_support.h"
+#include "triangle_box_overlap.h"
+#include "uneven_scenes.h"
+
+namespace gridrt {
+namespace {
+
+struct Built {
+  std::vector<GrTriangle> triangles;
+  UniformGrid grid;
+};
+
+// The bunny_res4 on a floor `scale` times its size, with leaves of at most `leaf`
+// triangles (small ones reach the deeper levels).
+Built build(float scale, int leaf) {
+  static const Scene bunny = loadGltfFile(test::modelScene("bunny_res4.glb"));
+  Built b;
+  const Scene scene = floorScene(bunny, scale);
+  b.triangles = prepareTriangles(scene);
+  GridSettings s;
+  s.adaptive = true;
+  s.max_leaf_triangles = leaf;
+  b.grid = buildAdaptiveGrid(b.triangles, sceneBounds(scene), s);
+  return b;
+}
+
+void boxOf(const UniformGrid& g, int pe, glm::dvec3& lo, glm::dvec3& hi) {
+  glm::vec3 l, h;
+  g.voxelBoxOfPe(pe, l, h);
+  lo = glm::dvec3(l);
+  hi = glm::dvec3(h);
+}
+
+bool inside(const glm::dvec3& p, const glm::dvec3& lo, const glm::dvec3& hi, double grow) {
+  for (int a = 0; a < 3; ++a)
+    if (p[a] < lo[a] - grow || p[a] > hi[a] + grow) return false;
+  return true;
+}
+
+TEST(AdaptiveGrid, LeavesHoldExactlyTheTrianglesOverlappingTheirGrownBoxes) {
+  for (int leaf : {256, 16}) {
+    const Built b = build(100.0f, leaf);
+    const UniformGrid& g = b.grid;
+    ASSERT_FALSE(g.adaptive.empty());
+    if (leaf == 16) EXPECT_GE(g.adaptive.depth, 2);
+    size_t wrong = 0;
+    for (int pe = 0; pe < g.peCount(); ++pe) {
+      glm::dvec3 lo, hi;
+      boxOf(g, pe, lo, hi);
+      std::vector<int> want, got;
+      for (const GrTriangle& t : b.triangles) {
+        glm::dvec3 v[3];
+        triangleVertices(t, v);
+        if (triangleOverlapsBox(lo - g.margin, hi + g.margin, v[0], v[1], v[2]))
+          want.push_back(t.prim);
+      }
+      for (int k = g.pe_tri_begin[pe]; k < g.pe_tri_begin[pe + 1]; ++k)
+        got.push_back(g.pe_triangles[k].prim);
+      EXPECT_TRUE(std::is_sorted(got.begin(), got.end())) << "PE " << pe;
+      wrong += want != got;
+    }
+    EXPECT_EQ(wrong, 0u) << "leaf " << leaf << ": " << g.peCount() << " PEs";
+  }
+}
+
+TEST(AdaptiveGrid, LeavesDoNotOverlap) {
+  const Built b = build(10.0f, 16);
+  const UniformGrid& g = b.grid;
+  size_t overlaps = 0;
+  for (int p = 0; p < g.peCount(); ++p)
+    for (int q = p + 1; q < g.peCount(); ++q) {
+      glm::dvec3 plo, phi, qlo, qhi;
+      boxOf(g, p, plo, phi);
+      boxOf(g, q, qlo, qhi);
+      bool apart = false;
+      for (int a = 0; a < 3; ++a) apart = apart || phi[a] <= qlo[a] || qhi[a] <= plo[a];
+      overlaps += !apart;
+    }
+  EXPECT_EQ(overlaps, 0u);
+}
+
+// Rays from random points of the box in random directions, some along the axes: at 64
+// distances along each ray, a point inside a leaf (away from its faces by the grid's
+// margin) lies in an entry of that leaf, and every entry's leaf, grown by the margin,
+// holds the middle of the entry's interval.
+TEST(AdaptiveGrid, ListsPutEveryPointOfTheRayInsideALeafInThatLeafsEntry) {
+  for (int leaf : {256, 16}) {
+    const Built b = build(10.0f, leaf);
+    const UniformGrid& g = b.grid;
+    const double m = g.margin;
+    glm::dvec3 glo(g.info.minx, g.info.miny, g.info.minz);
+    glm::dvec3 ghi =
+        glo + glm::dvec3(g.info.nx * double(g.info.cellx), g.info.ny * double(g.info.celly),
+                         g.info.nz * double(g.info.cellz));
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> unit(0.0, 1.0), signed_unit(-1.0, 1.0);
+    size_t missed = 0, stray = 0, checked = 0;
+    std::vector<ListEntry> list;
+    for (int r = 0; r < 3000; ++r) {
+      glm::dvec3 o = glo + glm::dvec3(unit(rng), unit(rng), unit(rng)) * (ghi - glo);
+      glm::dvec3 d(signed_unit(rng), signed_unit(rng), signed_unit(rng));
+      if (r % 10 == 0) d[r / 10 % 3] = 0.0;                       // in a plane of two axes
+      if (r % 30 == 1) d = glm::dvec3(0.0), d[r / 30 % 3] = 1.0;  // along an axis
+      if (glm::length(d) < 0.1) continue;
+      d = glm::normalize(d);
+      const GrRay ray{float(o.x), float(o.y), float(o.z), 0.0f,
+                      float(d.x), float(d.y), float(d.z), 1e30f};
+      list.clear();
+      adaptiveList(g, ray, list);
+      for (size_t k = 1; k < list.size(); ++k)
+        EXPECT_LE(list[k - 1].t_exit, list[k].t_enter) << "ray " << r;
+      const glm::dvec3 fo(ray.ox, ray.oy, ray.oz), fd(ray.dx, ray.dy, ray.dz);
+      for (const ListEntry& e : list) {
+        glm::dvec3 lo, hi;
+        boxOf(g, e.pe, lo, hi);
+        const double t = 0.5 * (double(e.t_enter) + double(e.t_exit));
+        stray += !inside(fo + t * fd, lo, hi, m);
+      }
+      const double span = glm::length(ghi - glo);
+      for (int s = 0; s < 64; ++s) {
+        const float t = float(span * (s + 0.5) / 64.0);
+        const glm::dvec3 p = fo + double(t) * fd;
+        for (int pe = 0; pe < g.peCount(); ++pe) {
+          glm::dvec3 lo, hi;
+          boxOf(g, pe, lo, hi);
+          if (!inside(p, lo, hi, -m)) continue;
+          ++checked;
+          bool found = false;
+          for (const ListEntry& e : list)
+            found = found || (e.pe == pe && e.t_enter <= t && t <= e.t_exit);
+          missed += !found;
+        }
+      }
+    }
+    EXPECT_GT(checked, 1000u);
+    EXPECT_EQ(missed, 0u) << "leaf " << leaf;
+    EXPECT_EQ(stray, 0u) << "leaf " << leaf;
+  }
+}
+
+}  // namespace
+}  // namespace gridrt
