@@ -137,7 +137,9 @@ TEST(OptionValues, ACroppedAovHoldsTheMissValueOutsideTheWindow) {
       for (int x = 0; x < image.width; ++x) {
         const float v = image.pixels[size_t(y * image.width + x)];
         const bool inside = x >= 16 && x < 48 && y >= 12 && y < 36;
-        if (!inside) EXPECT_EQ(v, -1.0f) << path << " at " << x << "," << y;
+        if (!inside) {
+          EXPECT_EQ(v, -1.0f) << path << " at " << x << "," << y;
+        }
         inside_hits += inside && v >= 0.0f;
       }
     EXPECT_EQ(inside_hits, 32 * 24) << path;  // the default scene's room fills the window

@@ -56,7 +56,9 @@ TEST(AdaptiveGrid, LeavesHoldExactlyTheTrianglesOverlappingTheirGrownBoxes) {
     const Built b = build(100.0f, leaf);
     const UniformGrid& g = b.grid;
     ASSERT_FALSE(g.adaptive.empty());
-    if (leaf == 16) EXPECT_GE(g.adaptive.depth, 2);
+    if (leaf == 16) {
+      EXPECT_GE(g.adaptive.depth, 2);
+    }
     size_t wrong = 0;
     for (int pe = 0; pe < g.peCount(); ++pe) {
       glm::dvec3 lo, hi;

@@ -8,8 +8,8 @@
 // Regenerate the reference (only after an intended change to the scene, camera, shading or
 // output, and after looking at a PNG render of it) from the repository root with:
 //
-//   build/gridrt --width 160 --height 120 --accel reference -q \
-//     -o scenes/reference/default_160x120.exr
+//   build/gridrt --width 160 --height 120 --accel reference -q
+//       -o scenes/reference/default_160x120.exr   (one command)
 //
 // (see scenes/reference/README.md). On a mismatch the test writes the absolute difference,
 // scaled x10, as a PNG and names it in the failure message.

@@ -233,7 +233,9 @@ TEST_F(UnevenScenes, TheAdaptiveStructureMatchesBruteOnTheEvenScenes) {
       s.max_leaf_triangles = leaf;
       const int depth =
           expectAllPathsMatchBrute(scene, s, 96, 72, name + " leaf " + std::to_string(leaf));
-      if (leaf == 16) EXPECT_GE(depth, 1) << name;
+      if (leaf == 16) {
+        EXPECT_GE(depth, 1) << name;
+      }
     }
   }
 }
