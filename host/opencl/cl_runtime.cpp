@@ -1,10 +1,13 @@
 #include "cl_runtime.h"
 
+#include <fcntl.h>
 #include <omp.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <condition_variable>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <mutex>
@@ -171,6 +174,16 @@ ClRuntime::ClRuntime(const std::string& spec, const std::string& binary_cache_di
     throw UsageError("unknown device '" + spec + "' (available: " + names + ")");
   }
   info_ = *chosen;
+  // GRIDRT_MAX_BUFFER_BYTES: behave as a device whose largest buffer is at most this (a
+  // rehearsal of a smaller device, and how the tests reach the out-of-resources exit).
+  if (const char* limit = std::getenv("GRIDRT_MAX_BUFFER_BYTES"); limit && *limit) {
+    static const std::regex digits(R"(^\d{1,19}$)");
+    if (!std::regex_match(limit, digits) || std::stoull(limit) == 0)
+      throw RenderError(std::string("GRIDRT_MAX_BUFFER_BYTES: expected a positive number of "
+                                    "bytes, got '") +
+                        limit + "'");
+    info_.max_alloc_bytes = std::min(info_.max_alloc_bytes, std::stoull(limit));
+  }
   std::vector<cl::Device> platform_devices;
   platforms[info_.platform_index].getDevices(CL_DEVICE_TYPE_ALL, &platform_devices);
   device_ = platform_devices[info_.device_index];
@@ -187,6 +200,31 @@ ClRuntime::ClRuntime(const std::string& spec, const std::string& binary_cache_di
   }
 }
 
+// Standard error sent to /dev/null while it lives. PoCL's compiler prints its diagnostics
+// ("3 errors generated.") straight to the process's stderr; the build log holds the same
+// words, and gridrt reports them in its own one-line message.
+namespace {
+class SilencedStderr {
+ public:
+  SilencedStderr() {
+    std::fflush(stderr);
+    saved_ = ::dup(2);
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (saved_ >= 0 && null >= 0) ::dup2(null, 2);
+    if (null >= 0) ::close(null);
+  }
+  ~SilencedStderr() {
+    std::fflush(stderr);
+    if (saved_ >= 0) ::dup2(saved_, 2), ::close(saved_);
+  }
+  SilencedStderr(const SilencedStderr&) = delete;
+  SilencedStderr& operator=(const SilencedStderr&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+}  // namespace
+
 cl::Program& ClRuntime::program(const std::string& file, const std::string& defines) {
   std::string key = file + "|" + defines;
   auto found = programs_.find(key);
@@ -194,13 +232,20 @@ cl::Program& ClRuntime::program(const std::string& file, const std::string& defi
   const std::string source = assembleKernelSource(file);
   // OpenCL C 1.2 for portability; exact division so scalar and vector code round alike.
   std::string options = "-cl-std=CL1.2 " + defines;
+  // GRIDRT_KERNEL_OPTIONS: more options for the OpenCL C compiler (experiments; the tests
+  // use it to reach the kernel-build-failure exit). Part of the binary cache's key.
+  if (const char* extra = std::getenv("GRIDRT_KERNEL_OPTIONS"); extra && *extra)
+    options += std::string(" ") + extra;
   if (info_.correctly_rounded_div_sqrt) options += " -cl-fp32-correctly-rounded-divide-sqrt";
   const std::vector<cl::Device> devices{device_};
   const std::string cache_key = device_identity_ + "\n" + options + "\n" + source;
   if (std::optional<std::vector<unsigned char>> binary = binaries_.load(cache_key)) {
     try {
       cl::Program loaded(context_, devices, cl::Program::Binaries{*binary});
-      loaded.build(devices, options.c_str());
+      {
+        SilencedStderr quiet;
+        loaded.build(devices, options.c_str());
+      }
       ++programs_loaded_;
       return programs_.emplace(key, loaded).first->second;
     } catch (const cl::Error&) {
@@ -210,6 +255,7 @@ cl::Program& ClRuntime::program(const std::string& file, const std::string& defi
   }
   cl::Program program(context_, source);
   try {
+    SilencedStderr quiet;
     program.build(devices, options.c_str());
   } catch (const cl::Error& e) {
     std::string log;
@@ -273,11 +319,19 @@ void ClRuntime::runWithHostThreadsAsleep(const std::function<void()>& enqueue) {
   if (wait_error) std::rethrow_exception(wait_error);
 }
 
+namespace {
+// "9708 MiB", "45 KiB", "4096 bytes": sizes in messages, never rounded to 0.
+std::string sizeText(unsigned long long bytes) {
+  if (bytes >= (1ull << 20)) return std::to_string(bytes >> 20) + " MiB";
+  if (bytes >= (1ull << 10)) return std::to_string(bytes >> 10) + " KiB";
+  return std::to_string(bytes) + " bytes";
+}
+}  // namespace
+
 void ClRuntime::checkAllocation(size_t bytes, const std::string& what) const {
   if (bytes > info_.max_alloc_bytes)
-    throw RenderError(what + " needs " + std::to_string(bytes >> 20) + " MiB in one buffer, " +
-                      "more than the device allows (" +
-                      std::to_string(info_.max_alloc_bytes >> 20) + " MiB)");
+    throw RenderError(what + " needs " + sizeText(bytes) + " in one buffer, " +
+                      "more than the device allows (" + sizeText(info_.max_alloc_bytes) + ")");
 }
 
 std::string clErrorName(int code) {
