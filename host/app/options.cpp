@@ -201,7 +201,9 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
                  "intersector: gridrt, dda, brute (device) or reference (host, double)")
       ->capture_default_str()
       ->check(CLI::IsMember({"gridrt", "dda", "brute", "reference"}));
-  app.add_option("--grid", raw.grid, "grid resolution: auto or NX,NY,NZ")->capture_default_str();
+  app.add_option("--grid", raw.grid,
+                 "grid: auto (uniform), adaptive (refined where dense) or NX,NY,NZ")
+      ->capture_default_str();
   app.add_option("--grid-density", o.grid.density,
                  "lambda of the auto resolution R_i = d_i*cbrt(lambda*N/V)")
       ->capture_default_str()
