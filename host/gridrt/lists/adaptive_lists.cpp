@@ -1,7 +1,6 @@
 #include "adaptive_lists.h"
 
 #include <algorithm>
-#include <cstring>
 
 #include "grid_dda.h"
 
@@ -109,15 +108,7 @@ void computeAdaptiveLists(const UniformGrid& grid, const GrRay* rays, size_t cou
       lists.begin[r + 1] = int(out.size() - before);  // a count for now
     }
   }
-  for (size_t r = 0; r < count; ++r) lists.begin[r + 1] += lists.begin[r];
-  lists.entries.resize(lists.begin[count]);
-#pragma omp parallel for schedule(static)
-  for (long long chunk = 0; chunk < (long long)chunks; ++chunk) {
-    const auto& out = lists.scratch[chunk];
-    if (!out.empty())
-      std::memcpy(&lists.entries[lists.begin[size_t(chunk) * kListChunkRays]], out.data(),
-                  out.size() * sizeof(ListEntry));
-  }
+  gatherChunkLists(lists, count, chunks);
 }
 
 }  // namespace gridrt

@@ -45,6 +45,10 @@ void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t co
       }
     }
   }
+  gatherChunkLists(lists, count, chunks);
+}
+
+void gatherChunkLists(TraversalLists& lists, size_t count, size_t chunks) {
   for (size_t r = 0; r < count; ++r) lists.begin[r + 1] += lists.begin[r];
   lists.entries.resize(lists.begin[count]);
 #pragma omp parallel for schedule(static)

@@ -31,6 +31,11 @@ struct TraversalLists {
 // Rays per chunk of the list computation (a unit of dynamic scheduling).
 constexpr size_t kListChunkRays = 2048;
 
+// The last step of building lists chunk by chunk (kListChunkRays rays each, on all cores):
+// lists.begin[r + 1] holds ray r's entry count and lists.scratch[c] chunk c's entries;
+// turns the counts into offsets and copies the chunks, in order, into lists.entries.
+void gatherChunkLists(TraversalLists& lists, size_t count, size_t chunks);
+
 // Fills `lists` for rays[0..count). Runs on all cores.
 void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t count,
                            TraversalLists& lists);
