@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "errors.h"
+#include "parallel_loops.h"
 #include "pinhole_view.h"
 #include "stopwatch.h"
 
@@ -61,19 +62,17 @@ RTCRay embreeRay(const GrRay& r) {
 void traceSingle(RTCScene scene, const std::vector<GrRay>& rays, HitMode mode, GrHit* hits) {
   const long long n = (long long)rays.size();
   if (mode == HitMode::AnyHit) {
-#pragma omp parallel for schedule(dynamic, 1024)
-    for (long long i = 0; i < n; ++i) {
+    parallelForDynamic(0LL, (long long)(n), 1024LL, [&](long long i) {
       const GrRay& r = rays[i];
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
       RTCRay ray = embreeRay(r);
       rtcOccluded1(scene, &context, &ray);
       hits[i] = ray.tfar < 0.0f ? occludedOf(r) : missOf(r);  // tfar = -inf: occluded
-    }
+    });
     return;
   }
-#pragma omp parallel for schedule(dynamic, 1024)
-  for (long long i = 0; i < n; ++i) {
+  parallelForDynamic(0LL, (long long)(n), 1024LL, [&](long long i) {
     const GrRay& r = rays[i];
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -84,7 +83,7 @@ void traceSingle(RTCScene scene, const std::vector<GrRay>& rays, HitMode mode, G
     hits[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID
                   ? missOf(r)
                   : GrHit{rh.ray.tfar, int(rh.hit.primID), rh.hit.u, rh.hit.v};
-  }
+  });
 }
 
 // The packet types and calls of one width.
@@ -159,12 +158,11 @@ void tracePacket(RTCScene scene, const GrRay* rays, const long long* index, HitM
 template <int N>
 void traceRuns(RTCScene scene, const std::vector<GrRay>& rays, HitMode mode, GrHit* hits) {
   const long long n = (long long)rays.size(), runs = (n + N - 1) / N;
-#pragma omp parallel for schedule(dynamic, 16)
-  for (long long run = 0; run < runs; ++run) {
+  parallelForDynamic(0LL, (long long)(runs), 16LL, [&](long long run) {
     long long index[N];
     for (int k = 0; k < N; ++k) index[k] = run * N + k < n ? run * N + k : -1;
     tracePacket<N>(scene, rays.data(), index, mode, false, hits);
-  }
+  });
 }
 
 // Tiles of 4 x (N / 4) pixels of a window whose ray k is pixel k, row-major.
@@ -173,8 +171,7 @@ void traceTiles(RTCScene scene, const std::vector<GrRay>& rays, int width, int h
                 GrHit* hits) {
   constexpr int kTileW = 4, kTileH = N / 4;
   const int tiles_x = (width + kTileW - 1) / kTileW, tiles_y = (height + kTileH - 1) / kTileH;
-#pragma omp parallel for schedule(dynamic, 16)
-  for (long long tile = 0; tile < (long long)tiles_x * tiles_y; ++tile) {
+  parallelForDynamic(0LL, (long long)(tiles_x * tiles_y), 16LL, [&](long long tile) {
     const int x0 = int(tile % tiles_x) * kTileW, y0 = int(tile / tiles_x) * kTileH;
     long long index[N];
     for (int k = 0; k < N; ++k) {
@@ -182,7 +179,7 @@ void traceTiles(RTCScene scene, const std::vector<GrRay>& rays, int width, int h
       index[k] = x < width && y < height ? (long long)y * width + x : -1;
     }
     tracePacket<N>(scene, rays.data(), index, HitMode::Closest, true, hits);
-  }
+  });
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 //   embree_peer [SCENE.glb] --whitted [--width W --height H --max-depth D -o OUT.png ...]
 //
 // Camera rays (the default): gridrt's centre rays (CameraRayGenerator, the scene's camera
-// or the default one), made once; a frame is tracing them all (closest hit) on T OpenMP
+// or the default one), made once; a frame is tracing them all (closest hit) on T host
 // threads, one ray at a time (rtcIntersect1) or in coherent packets of 4x2 / 4x4 pixels
 // (rtcIntersect8 / 16). Ray generation and shading are not in the frame, so the figure
 // flatters Embree against gridrt's frame, which has both. --primid writes each pixel's
@@ -20,8 +20,6 @@
 // The BVH is Embree's high-quality build. Prints one line of JSON: build_ms, the median
 // frame_ms of --frames frames after a warm-up, mrays_per_s, hits or (--whitted) fps and
 // the frame's phases.
-#include <omp.h>
-
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -37,6 +35,7 @@
 #include "frame_statistics.h"
 #include "gltf_loader.h"
 #include "image_output.h"
+#include "parallel_loops.h"
 #include "pinhole_view.h"
 #include "prepared_triangles.h"
 #include "renderer.h"
@@ -62,7 +61,7 @@ PeerOptions parse(int argc, char** argv) {
                  "glTF 2.0 scene (.gltf or .glb; --whitted: default scene without)");
   app.add_option("--width", o.width, "image width")->check(CLI::Range(1, 65536));
   app.add_option("--height", o.height, "image height")->check(CLI::Range(1, 65536));
-  app.add_option("--threads", o.threads, "OpenMP and Embree threads")->check(CLI::Range(1, 1024));
+  app.add_option("--threads", o.threads, "host and Embree threads")->check(CLI::Range(1, 1024));
   app.add_option("--packet", o.packet, "rays per rtcIntersect call")
       ->check(CLI::IsMember({1, 8, 16}));
   app.add_option("--frames", o.frames, "timed frames after a warm-up")
@@ -180,7 +179,8 @@ int run(const PeerOptions& o) {
   if (o.whitted && !o.output.empty()) validateOutputPath(o.output);
   const Scene scene = loadPeerScene(o);
   const Camera camera = scene.has_camera ? scene.camera : defaultCamera(sceneBounds(scene));
-  omp_set_num_threads(o.threads);
+  const tbb::global_control host_threads(tbb::global_control::max_allowed_parallelism,
+                                         size_t(std::max(1, o.threads)));
   EmbreeIntersector embree(scene, o.threads, o.packet);
   return o.whitted ? runWhitted(o, scene, camera, embree) : runCameraRays(o, scene, camera, embree);
 }

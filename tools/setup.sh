@@ -20,7 +20,7 @@ PACKAGES=(
   cmake make g++ pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libglm-dev libopenimageio-dev openimageio-tools libtinygltf-dev
-  libgtest-dev libcli11-dev nlohmann-json3-dev libhwy-dev
+  libgtest-dev libcli11-dev nlohmann-json3-dev libhwy-dev libtbb-dev
   python3 python3-venv
 )
 if [ "$bench" -eq 1 ]; then PACKAGES+=(libembree-dev); fi

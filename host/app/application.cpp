@@ -23,11 +23,13 @@
 #include "gridrt_intersector.h"
 #include "image_output.h"
 #include "memory_estimate.h"
+#include "parallel_loops.h"
 #include "prepared_triangles.h"
 #include "progress.h"
 #include "reference_intersector.h"
 #include "renderer.h"
 #include "stopwatch.h"
+#include "thread_count.h"
 #include "uniform_grid.h"
 #include "window_output.h"
 
@@ -270,6 +272,7 @@ Options sizedForCamera(const Options& given, const Camera& camera) {
 }
 
 int runApplication(const Options& given) {
+  const ThreadLimit thread_limit(given.threads);
   if (given.list_devices) {
     auto devices = listDevices();
     if (devices.empty())
@@ -336,6 +339,8 @@ int runApplication(const Options& given) {
   uint64_t total_rays = frame.rays.total();
   nlohmann::json stats = frameStatistics(t.phases, frame.rays);
   stats["device"] = runtime.info().name;
+  stats["device_compute_units"] = runtime.info().compute_units;
+  stats["host_threads"] = parallelSliceCount();
   stats["scene"] = o.scene.empty() ? "(default scene)" : o.scene;
   stats["triangles"] = scene.triangleCount();
   stats["width"] = o.width;

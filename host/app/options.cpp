@@ -197,6 +197,9 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
       ->check(integerIn(0, 64));
   app.add_option("--device", o.device, "OpenCL device: P:D or part of its name (default: first)");
   app.add_flag("--list-devices", o.list_devices, "list OpenCL devices and exit");
+  app.add_option("--threads", o.threads, "threads for the host and a CPU device (0: all cores)")
+      ->capture_default_str()
+      ->check(integerIn(0, 4096));
   app.add_option("--accel", raw.accel,
                  "intersector: gridrt, dda, brute (device) or reference (host, double)")
       ->capture_default_str()

@@ -31,6 +31,7 @@ struct Options {
   int spp = 1;
   int max_depth = 5;
   std::string device;  // "" first device, "P:D", or a name substring
+  int threads = 0;     // --threads: host loops and the CPU device; 0 = every core
   bool list_devices = false;
   AccelKind accel = AccelKind::GridRt;
   GridSettings grid;          // --grid auto | NX,NY,NZ; --grid-density

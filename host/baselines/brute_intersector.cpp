@@ -24,7 +24,7 @@ void BruteIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   size_t n = rays.size();
   hits.resize(n);
   if (n > 0) {
-    rt_.runWithHostThreadsAsleep([&] {
+    rt_.runAndWait([&] {
       rays_.upload(rt_, rays);
       hits_.reserve(rt_, n);
       KernelArgs args;

@@ -28,7 +28,7 @@ void DdaIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   hits.resize(n);
   tests_host_.resize(n);
   if (n > 0) {
-    rt_.runWithHostThreadsAsleep([&] {
+    rt_.runAndWait([&] {
       rays_.upload(rt_, rays);
       hits_.reserve(rt_, n);
       tests_.reserve(rt_, n);

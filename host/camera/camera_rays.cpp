@@ -5,6 +5,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 
+#include "parallel_loops.h"
+
 namespace gridrt {
 
 Camera defaultCamera(const Bounds& bounds) {
@@ -86,9 +88,9 @@ void CameraRayGenerator::centreRow(int j, int i0, int i1, GrRay* out, float* out
 }
 
 void CameraRayGenerator::centreWindow(const PixelWindow& window, GrRay* out) const {
-#pragma omp parallel for schedule(static)
-  for (int y = window.y0; y < window.y1; ++y)
+  parallelFor(int(window.y0), int(window.y1), [&](int y) {
     centreRow(y, window.x0, window.x1, out + size_t(y - window.y0) * window.width());
+  });
 }
 
 Bounds primaryRayOrigins(const Camera& camera, int width, int height) {

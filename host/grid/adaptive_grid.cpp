@@ -1,11 +1,10 @@
 #include "adaptive_grid.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <iterator>
 
+#include "parallel_loops.h"
 #include "prepared_triangles.h"
 #include "triangle_box_overlap.h"
 
@@ -151,9 +150,8 @@ UniformGrid buildAdaptiveGrid(const std::vector<GrTriangle>& triangles, const Bo
   // The top cells over the limit get their grids, in parallel.
   std::vector<Subtree> trees(top_pes);
   std::vector<char> split(top_pes, 0);
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int pe = 0; pe < top_pes; ++pe) {
-    if (top.triangleCountOfPe(pe) <= settings.max_leaf_triangles) continue;
+  parallelForDynamic(int(0), int(top_pes), int(1), [&](int pe) {
+    if (top.triangleCountOfPe(pe) <= settings.max_leaf_triangles) return;
     const glm::ivec3 v = top.voxelCoords(top.voxel_of_pe[pe]);
     const float lo[3] = {plane(0, v.x), plane(1, v.y), plane(2, v.z)};
     const float hi[3] = {plane(0, v.x + 1), plane(1, v.y + 1), plane(2, v.z + 1)};
@@ -161,7 +159,7 @@ UniformGrid buildAdaptiveGrid(const std::vector<GrTriangle>& triangles, const Bo
                                  top.pe_triangles.begin() + top.pe_tri_begin[pe + 1]);
     split[pe] = buildNode(lo, hi, tris, 1, top.margin, settings.density,
                           settings.max_leaf_triangles, trees[pe]) >= 0;
-  }
+  });
 
   UniformGrid grid;
   grid.info = top.info;

@@ -1,10 +1,9 @@
 #include "uniform_grid.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 
+#include "parallel_loops.h"
 #include "prepared_triangles.h"
 #include "triangle_box_overlap.h"
 
@@ -111,13 +110,11 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
   const double m = grid.margin;
   const size_t voxels = size_t(n.x) * n.y * n.z;
 
-  int threads = omp_get_max_threads();
-  std::vector<std::vector<VoxelRef>> refs(threads);
-#pragma omp parallel num_threads(threads)
-  {
-    auto& mine = refs[omp_get_thread_num()];
-#pragma omp for schedule(static)
-    for (long long t = 0; t < (long long)triangles.size(); ++t) {
+  std::vector<std::vector<VoxelRef>> refs(parallelSliceCount());
+  parallelSlices(int(refs.size()), [&](int me, int count) {
+    auto& mine = refs[me];
+    const auto [t_begin, t_end] = sliceRange(size_t(triangles.size()), me, count);
+    for (size_t t = t_begin; t < t_end; ++t) {
       glm::dvec3 v[3];
       triangleVertices(triangles[t], v);
       glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2]));
@@ -140,7 +137,7 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
               mine.push_back({x + n.x * (y + n.y * z), int(t)});
           }
     }
-  }
+  });
   // Counting sort by voxel. Threads hold consecutive triangle ranges in order, so
   // walking thread 0, 1, ... keeps each voxel's triangles in increasing global index.
   std::vector<int> count(voxels, 0);

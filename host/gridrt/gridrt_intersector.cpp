@@ -1,11 +1,11 @@
 #include "gridrt_intersector.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <numeric>
 
+#include "parallel_loops.h"
 #include "prepared_triangles.h"
 #include "segment_culling.h"
 #include "stopwatch.h"
@@ -14,8 +14,24 @@ namespace gridrt {
 
 namespace {
 
+// One parallel slice's counts of a batch's phase 2, summed once all slices are done.
+struct SliceTally {
+  uint64_t tests = 0, tests_run = 0, skipped = 0, pairs = 0, longest = 0;
+  static SliceTally sumOf(const std::vector<SliceTally>& slices) {
+    SliceTally sum;
+    for (const SliceTally& t : slices) {
+      sum.tests += t.tests;
+      sum.tests_run += t.tests_run;
+      sum.skipped += t.skipped;
+      sum.pairs += t.pairs;
+      sum.longest = std::max(sum.longest, t.longest);
+    }
+    return sum;
+  }
+};
+
 // Maps `count` elements of a device buffer into host memory (no copy on a CPU device).
-// Non-blocking: the pointer is usable once the enclosing runWithHostThreadsAsleep returns.
+// Non-blocking: the pointer is usable once the enclosing runAndWait returns.
 template <typename T>
 T* mapBuffer(ClRuntime& rt, cl::Buffer& buffer, cl_map_flags flags, size_t count) {
   return static_cast<T*>(rt.queue().enqueueMapBuffer(buffer, CL_FALSE, flags, 0,
@@ -145,7 +161,7 @@ void GridRtIntersector::runPes(size_t n, HitMode mode) {
   const std::vector<GrPeTask>& tasks = bins_.tasks;
   const size_t lanes = bins_.packets * GR_PACKET_LANES;
   const size_t result_floats = GR_LIST_RESULT_PLANES * lanes + 4 * bins_.packets;
-  rt_.runWithHostThreadsAsleep([&] {
+  rt_.runAndWait([&] {
     enqueueUnmaps();
     enqueueEntriesUnmap();
     if (tasks.empty()) return;
@@ -178,7 +194,7 @@ void GridRtIntersector::runPes(size_t n, HitMode mode) {
 GridRtIntersector::~GridRtIntersector() {
   if (!results_map_ && !planes_map_ && !entries_map_) return;
   try {
-    rt_.runWithHostThreadsAsleep([&] {
+    rt_.runAndWait([&] {
       enqueueUnmaps();
       enqueuePlanesUnmap();
       enqueueEntriesUnmap();
@@ -234,7 +250,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   const size_t pair_floats =
       maxPairPackets(lists_.entries.size(), grid_.peCount()) * kPairPacketFloats;
   if (!entries_map_ || entries_.capacity() < pair_floats) {
-    rt_.runWithHostThreadsAsleep([&] {
+    rt_.runAndWait([&] {
       enqueueUnmaps();
       enqueueEntriesUnmap();
       entries_.reserve(rt_, pair_floats);
@@ -260,15 +276,14 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   }
   const PacketResults results(results_map_, bins_.packets * GR_PACKET_LANES, GR_LIST_RESULT_PLANES);
   const std::vector<GrPeTask>& tasks = bins_.tasks;
-  uint64_t tests = 0, tests_run = 0, skipped = 0, longest = 0;
-#pragma omp parallel reduction(+ : tests, tests_run, skipped) reduction(max : longest)
-  {
-    const int me = omp_get_thread_num(), count = omp_get_num_threads();
+  std::vector<SliceTally> tallies(parallelSliceCount());
+  parallelSlices(int(tallies.size()), [&](int me, int count) {
+    SliceTally& tally = tallies[me];
     const long long lo = (long long)(n * me / count), hi = (long long)(n * (me + 1) / count);
     for (long long r = lo; r < hi; ++r) {
       hits[r] = GrHit{rays[r].tmax, -1, 0.0f, 0.0f};
       const int length = lists_.lengthOf(r);
-      longest = std::max<uint64_t>(longest, uint64_t(length));
+      tally.longest = std::max<uint64_t>(tally.longest, uint64_t(length));
       if (diagnostics) {
         diagnostics->list_length[r] = length;
         int ray_tests = 0;
@@ -284,11 +299,11 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
       for (int p = task.first_packet; p < task.first_packet + packets; ++p) {
         const GrPacketMasks& m = results.masks[p];
         if (int(k % size_t(count)) == me) {
-          tests += uint64_t(popcount(m.pierced & ~m.skipped)) * cost;
-          tests_run += uint64_t(m.tests);
-          skipped += popcount(m.skipped);
+          tally.tests += uint64_t(popcount(m.pierced & ~m.skipped)) * cost;
+          tally.tests_run += uint64_t(m.tests);
+          tally.skipped += popcount(m.skipped);
         }
-        // The rays of this thread's range, by lane (the pairs carry their rays).
+        // The rays of this slice's range, by lane (the pairs carry their rays).
         const size_t first = size_t(p) * GR_PACKET_LANES;
         auto rayOfLane = [&](int lane) {
           const int ray = results.ray[first + size_t(lane)];
@@ -303,9 +318,10 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
                            diagnostics ? &diagnostics->winning_pe : nullptr);
       }
     }
-  }
-  max_list_length_ = std::max(max_list_length_, longest);
-  finishBatch(bins_.pairs_per_pe, n, tests, tests_run, lists_.entries.size(), skipped);
+  });
+  const SliceTally sum = SliceTally::sumOf(tallies);
+  max_list_length_ = std::max(max_list_length_, sum.longest);
+  finishBatch(bins_.pairs_per_pe, n, sum.tests, sum.tests_run, lists_.entries.size(), sum.skipped);
   counters_.reduce_ms += clock.ms();
 }
 
@@ -379,15 +395,15 @@ void GridRtIntersector::generateAndIntersectPrimary(const PinholeView& view,
     // lanes) after another; row ly of a tile row fills lanes 4 ly .. 4 ly + 3 of each of
     // its tiles. Past the window's right edge and bottom the lanes are padding (zero).
     const size_t row_floats = size_t(tiles_x) * kTileSize;
-    camera_rows_.resize(omp_get_max_threads());
-    int u = 0;
-#pragma omp parallel reduction(+ : u)
-    {
-      std::vector<float>& row = camera_rows_[omp_get_thread_num()];
+    camera_rows_.resize(parallelSliceCount());
+    std::vector<int> slice_uncovered(camera_rows_.size(), 0);
+    parallelSlices(int(camera_rows_.size()), [&](int me, int count) {
+      std::vector<float>& row = camera_rows_[me];
       row.assign(3 * row_floats, 0.0f);
       float *rdx = row.data(), *rdy = rdx + row_floats, *rdz = rdy + row_floats;
-#pragma omp for schedule(static)
-      for (int ty = 0; ty < tiles_y; ++ty) {
+      int& u = slice_uncovered[me];
+      const auto [ty_begin, ty_end] = sliceRange(size_t(tiles_y), me, count);
+      for (int ty = int(ty_begin); ty < int(ty_end); ++ty) {
         for (int ly = 0; ly < kTileSize; ++ly) {
           const int y = ty * kTileSize + ly;
           if (y < wh) {
@@ -409,11 +425,11 @@ void GridRtIntersector::generateAndIntersectPrimary(const PinholeView& view,
             }
         }
       }
-    }
+    });
     for (size_t b = size_t(tiles_y) * band_slots; b < stride; ++b) dx[b] = dy[b] = dz[b] = 0.0f;
     // A pinhole camera's rays all start at its eye, over [0, inf) (CameraRayGenerator::pinhole).
     differing = 0;
-    uncovered = u;
+    uncovered = std::accumulate(slice_uncovered.begin(), slice_uncovered.end(), 0);
   };
   intersectBundles(rays, camera_bundles_, HitMode::Closest, cameraInterrupt(), hits, diagnostics,
                    &frame, &fill);
@@ -438,7 +454,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   // would cost a wait on the device.
   float* planes = planes_map_;
   if (!planes || planes_.capacity() < GR_PLANES * stride) {
-    rt_.runWithHostThreadsAsleep([&] {
+    rt_.runAndWait([&] {
       enqueueUnmaps();
       enqueuePlanesUnmap();
       planes_.reserve(rt_, GR_PLANES * stride);
@@ -466,38 +482,45 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   };
   if (check_cover && !fill) {
     // In ray order (sequential reads; the bundle order holds every ray once, and padding).
-#pragma omp parallel for simd schedule(static) reduction(+ : differing, uncovered)
-    for (long long r = 0; r < (long long)n; ++r) {
-      differing += !sameStart(rays[r]);
-      uncovered += !cullFrameCovers(frame, rays[r]);
+    std::vector<std::pair<int, int>> slice_counts(parallelSliceCount());
+    parallelSlices(int(slice_counts.size()), [&](int me, int count) {
+      const auto [begin, end] = sliceRange(n, me, count);
+      int d = 0, u = 0;
+#pragma omp simd reduction(+ : d, u)
+      for (size_t r = begin; r < end; ++r) {
+        d += !sameStart(rays[r]);
+        u += !cullFrameCovers(frame, rays[r]);
+      }
+      slice_counts[me] = {d, u};
+    });
+    for (const auto& [d, u] : slice_counts) {
+      differing += d;
+      uncovered += u;
     }
   }
   if (!fill) {
-#pragma omp parallel for schedule(static)
-    for (long long b = 0; b < (long long)stride; ++b) {
+    parallelFor(0LL, (long long)(stride), [&](long long b) {
       const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
       const GrRay& ray = r >= 0 ? rays[r] : common;
       planes[GR_PLANE_DX * stride + b] = r >= 0 ? ray.dx : 0.0f;
       planes[GR_PLANE_DY * stride + b] = r >= 0 ? ray.dy : 0.0f;
       planes[GR_PLANE_DZ * stride + b] = r >= 0 ? ray.dz : 0.0f;
       if (!check_cover) writeStarts(b, ray);
-    }
+    });
   }
   // Shadow rays (no frame) never share an origin: their starts are written above.
   const bool common_origin = check_cover && differing == 0;
   if (!common_origin && check_cover) {
-#pragma omp parallel for schedule(static)
-    for (long long b = 0; b < (long long)stride; ++b) {
+    parallelFor(0LL, (long long)(stride), [&](long long b) {
       const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
       writeStarts(b, r >= 0 ? rays[r] : common);
-    }
+    });
   }
   // The tasks run in chunks whose results fit the device (RayBundles::chunk_begin): each
   // chunk's kernel, then its part of phase 2. The planes stay on the device until the
   // last chunk has read them; the hits of later chunks go on from those of earlier ones.
-  const int threads = omp_get_max_threads();
-  thread_pe_pairs_.resize(threads);
-  uint64_t tests = 0, tests_run = 0, skipped = 0, pairs = 0;
+  thread_pe_pairs_.resize(parallelSliceCount());
+  std::vector<SliceTally> tallies(thread_pe_pairs_.size());
   std::vector<int>* winners = diagnostics ? &diagnostics->winning_pe : nullptr;
   GrCullFrame culling{};
   const size_t chunks = bundles.chunkCount();
@@ -508,7 +531,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     const size_t task_count = bundles.chunk_begin[chunk + 1] - bundles.chunk_begin[chunk];
     const size_t lanes = bundles.chunk_lanes[chunk], packets = lanes / GR_PACKET_LANES;
     if (!first_chunk) clock.restart();
-    rt_.runWithHostThreadsAsleep([&] {
+    rt_.runAndWait([&] {
       enqueueUnmaps();
       if (first_chunk) enqueuePlanesUnmap();
       if (task_count == 0) return;
@@ -563,22 +586,20 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       diagnostics->winning_pe.assign(n, -1);
       diagnostics->list_length.assign(n, 0);
     }
-#pragma omp parallel num_threads(threads) reduction(+ : tests, tests_run, skipped, pairs)
-    {
-      const int me = omp_get_thread_num(), count = omp_get_num_threads();
+    // Every ray a miss to begin with, written in ray order (in bundle order it would be a
+    // scatter), all of them before the hits below.
+    if (first_chunk)
+      parallelFor(size_t(0), n, [&](size_t r) {
+        hits[r] = GrHit{common_origin ? common.tmax : rays[r].tmax, -1, 0.0f, 0.0f};
+      });
+    parallelSlices(int(tallies.size()), [&](int me, int count) {
+      SliceTally& tally = tallies[me];
       std::vector<int>& pe_pairs = thread_pe_pairs_[me];
       if (first_chunk) pe_pairs.assign(grid_.peCount(), 0);
       const size_t span = (slots / GR_PACKET_LANES + count - 1) / count * GR_PACKET_LANES;
       const long long lo = (long long)std::min(slots, size_t(me) * span);
       const long long hi = (long long)std::min(slots, size_t(lo) + span);
-      // Every ray a miss to begin with, written in ray order (in bundle order it would be a
-      // scatter); the loop's barrier comes before the hits below.
-      if (first_chunk) {
-#pragma omp for schedule(static)
-        for (long long r = 0; r < (long long)n; ++r)
-          hits[r] = GrHit{common_origin ? common.tmax : rays[r].tmax, -1, 0.0f, 0.0f};
-      }
-      // Bundle order maps to distinct rays, so the threads write disjoint hits.
+      // Bundle order maps to distinct rays, so the slices write disjoint hits.
       for (size_t t = 0; t < task_count; ++t) {
         const GrBundleTask& task = chunk_tasks[t];
         const long long first = std::max<long long>(task.first_ray, lo);
@@ -595,12 +616,12 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
             in_range &= 0xFFFF >> int(base + GR_PACKET_LANES - last);
           const GrPacketMasks& m = results.masks[task.out_first / GR_PACKET_LANES + p];
           // A packet's tests count in the thread whose range holds its first lane.
-          if (base >= lo) tests_run += uint64_t(m.tests);
+          if (base >= lo) tally.tests_run += uint64_t(m.tests);
           const int pierced = m.pierced & in_range, tested = pierced & ~m.skipped;
           if (!pierced) continue;
-          pairs += popcount(pierced);
-          skipped += popcount(pierced & m.skipped);
-          tests += uint64_t(popcount(tested)) * cost;
+          tally.pairs += popcount(pierced);
+          tally.skipped += popcount(pierced & m.skipped);
+          tally.tests += uint64_t(popcount(tested)) * cost;
           pe_pairs[task.pe] += popcount(pierced);
           if (diagnostics)
             for (int bits = pierced; bits; bits &= bits - 1) {
@@ -614,7 +635,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
               [&](int lane) { return bundles.ray_of[base + lane]; }, hits, winners);
         }
       }
-    }
+    });
     if (!last_chunk) counters_.reduce_ms += clock.ms();
   }
   if (diagnostics) {
@@ -627,7 +648,8 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   std::vector<int>& pe_pairs = thread_pe_pairs_[0];
   for (size_t t = 1; t < thread_pe_pairs_.size(); ++t)
     for (int pe = 0; pe < grid_.peCount(); ++pe) pe_pairs[pe] += thread_pe_pairs_[t][pe];
-  finishBatch(pe_pairs, n, tests, tests_run, pairs, skipped);
+  const SliceTally sum = SliceTally::sumOf(tallies);
+  finishBatch(pe_pairs, n, sum.tests, sum.tests_run, sum.pairs, sum.skipped);
   counters_.reduce_ms += clock.ms();
 }
 

@@ -147,7 +147,7 @@ class GridRtIntersector : public Intersector {
   // The same for the list path's pair packets (entries_): binByPe writes them there.
   float* entries_map_ = nullptr;
   // Enqueue the unmaps of phase 1's results, of the planes and of the pairs (inside
-  // ClRuntime::runWithHostThreadsAsleep).
+  // ClRuntime::runAndWait).
   void enqueueUnmaps();
   void enqueuePlanesUnmap();
   void enqueueEntriesUnmap();

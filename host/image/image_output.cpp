@@ -15,6 +15,7 @@
 #include <filesystem>
 
 #include "errors.h"
+#include "parallel_loops.h"
 
 namespace gridrt {
 namespace {
@@ -121,11 +122,10 @@ void writeImage(const std::string& path, const Film& film) {
   // pass on all cores straight into the buffer OpenImageIO writes from.
   std::vector<float> srgb(film.rgb.size());
   const long long count = (long long)srgb.size();
-#pragma omp parallel for schedule(static)
-  for (long long k = 0; k < count; ++k) {
+  parallelFor(0LL, (long long)(count), [&](long long k) {
     const float v = film.rgb[k];
     srgb[k] = OIIO::linear_to_sRGB(std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f));
-  }
+  });
   const OIIO::ImageBuf encoded(OIIO::ImageSpec(film.width, film.height, 3, OIIO::TypeDesc::FLOAT),
                                srgb.data());
   writeAtomically(path, encoded, OIIO::TypeDesc::UINT8);

@@ -1,5 +1,6 @@
 #include "reference_intersector.h"
 
+#include "parallel_loops.h"
 #include "prepared_triangles.h"
 #include "stopwatch.h"
 
@@ -41,8 +42,7 @@ void ReferenceIntersector::intersect(const std::vector<GrRay>& rays, HitMode mod
   const long long n = (long long)rays.size();
   const size_t tris = v0_.size();
   hits.resize(rays.size());
-#pragma omp parallel for schedule(dynamic, 64)
-  for (long long r = 0; r < n; ++r) {
+  parallelForDynamic(0LL, (long long)(n), 64LL, [&](long long r) {
     const GrRay& ray = rays[r];
     glm::dvec3 o(ray.ox, ray.oy, ray.oz), d(ray.dx, ray.dy, ray.dz);
     double best = ray.tmax;
@@ -57,7 +57,7 @@ void ReferenceIntersector::intersect(const std::vector<GrRay>& rays, HitMode mod
       }
     }
     hits[r] = hit;
-  }
+  });
   counters_.rays += rays.size();
   counters_.tests += uint64_t(rays.size()) * tris;
   counters_.tests_run += uint64_t(rays.size()) * tris;

@@ -1,16 +1,13 @@
 #include "cl_runtime.h"
 
 #include <fcntl.h>
-#include <omp.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
-#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <mutex>
 #include <optional>
 #include <regex>
 #include <sstream>
@@ -276,47 +273,20 @@ cl::Program& ClRuntime::program(const std::string& file, const std::string& defi
   return programs_.emplace(key, program).first->second;
 }
 
-void ClRuntime::runWithHostThreadsAsleep(const std::function<void()>& enqueue) {
+void ClRuntime::runAndWait(const std::function<void()>& enqueue) {
   cl::Event marker;
-  std::mutex mutex;
-  std::condition_variable queued;
-  bool ready = false;
-  std::exception_ptr error, wait_error;  // no exception may leave a parallel region
-  // The workers sleep on `queued` until the commands are in, then in the marker's wait.
-#pragma omp parallel
-  {
-    if (omp_get_thread_num() == 0) {
-      try {
-        enqueue();
-        queue_.enqueueMarkerWithWaitList(nullptr, &marker);
-        queue_.flush();
-      } catch (...) {
-        error = std::current_exception();
-        try {
-          queue_.finish();  // nothing queued may outlive the data it reads
-        } catch (...) {
-        }
-      }
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        ready = true;
-      }
-      queued.notify_all();
-    } else {
-      std::unique_lock<std::mutex> lock(mutex);
-      queued.wait(lock, [&] { return ready; });
+  try {
+    enqueue();
+    queue_.enqueueMarkerWithWaitList(nullptr, &marker);
+    queue_.flush();
+  } catch (...) {
+    try {
+      queue_.finish();  // nothing queued may outlive the data it reads
+    } catch (...) {
     }
-    if (!error) {
-      try {
-        marker.wait();  // throws if a command failed
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (!wait_error) wait_error = std::current_exception();
-      }
-    }
+    throw;
   }
-  if (error) std::rethrow_exception(error);
-  if (wait_error) std::rethrow_exception(wait_error);
+  marker.wait();  // throws if a command failed
 }
 
 namespace {

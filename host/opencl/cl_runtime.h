@@ -68,15 +68,12 @@ class ClRuntime {
   }
   size_t peakBufferBytes() const { return peak_buffer_bytes_; }
 
-  // Calls `enqueue` (OpenCL commands; a blocking one is fine) on this thread and waits for
-  // everything queued, with the host's other OpenMP threads asleep from before the first
-  // command until the last has run. An idle OpenMP worker otherwise spins (libgomp's
-  // default spin lasts milliseconds after every parallel region) on the cores the CPU
-  // device's threads run the commands on, and now and then holds one of them off for a
-  // time slice. Every device interaction of the intersectors goes through here (the
-  // Whitted and large primary frames got faster, as fast as with GOMP_SPINCOUNT=10000;
-  // docs/history.md). An exception from `enqueue` is rethrown after the wait.
-  void runWithHostThreadsAsleep(const std::function<void()>& enqueue);
+  // Calls `enqueue` (OpenCL commands; a blocking one is fine) and waits for everything it
+  // queued. Every device interaction of the intersectors goes through here. The host's
+  // idle threads are TBB's, which sleep while the device's threads run (parallel_loops.h),
+  // so nothing needs putting to sleep first. An exception from `enqueue` is rethrown once
+  // the queue has finished.
+  void runAndWait(const std::function<void()>& enqueue);
 
  private:
   DeviceInfo info_;

@@ -1,7 +1,5 @@
 #include "renderer.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,6 +7,7 @@
 #include "bounds.h"
 #include "camera_rays.h"
 #include "default_lighting.h"
+#include "parallel_loops.h"
 #include "pixel_blocks.h"
 #include "prepared_triangles.h"
 #include "stopwatch.h"
@@ -38,24 +37,22 @@ glm::vec3 reflectDirection(const glm::vec3& d, const glm::vec3& n) {
   return d - 2.0f * glm::dot(d, n) * n;
 }
 
-// Calls add(i) for every i in [0, n) on all cores, where pixel_of(i) is the pixel entry i
+// Calls add(i) for every i in [0, n) in parallel slices, where pixel_of(i) is the pixel entry i
 // adds to and each pixel's entries are consecutive (so in every generation: a pixel's
 // samples are consecutive in the primary order, and spawned rays and shadow rays follow
-// the order of the rays that spawned them). The threads' ranges end between pixels: no
-// two threads share a pixel, and each pixel's sum keeps the serial order.
+// the order of the rays that spawned them). The slices' ranges end between pixels: no
+// two slices share a pixel, and each pixel's sum keeps the serial order.
 template <typename PixelOf, typename Add>
 void addInPixelRuns(size_t n, const PixelOf& pixel_of, const Add& add) {
-#pragma omp parallel
-  {
-    const size_t threads = omp_get_num_threads(), me = omp_get_thread_num();
+  parallelSlices(parallelSliceCount(), [&](size_t me, size_t slices) {
     auto boundary = [&](size_t k) {
-      size_t i = n * k / threads;
+      size_t i = n * k / slices;
       while (i > 0 && i < n && pixel_of(i) == pixel_of(i - 1)) ++i;
       return i;
     };
     const size_t hi = boundary(me + 1);
     for (size_t i = boundary(me); i < hi; ++i) add(i);
-  }
+  });
 }
 
 // The next free index of two parallel vectors whose first `count` elements are in use
@@ -195,10 +192,10 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
   frame.refined_pixels = 0;
   frame.passes = 0;
   radiance_.resize(pixels);
-#pragma omp parallel for schedule(static)
-  for (int y = 0; y < fh; ++y)
+  parallelFor(int(0), int(fh), [&](int y) {
     std::fill(radiance_.begin() + size_t(y) * fw, radiance_.begin() + size_t(y + 1) * fw,
               glm::vec3(0.0f));
+  });
   if (settings_.want_aovs || settings_.want_diagnostics) {
     const bool diag = settings_.want_diagnostics;
     PrimaryAovs& a = frame.aovs;
@@ -248,9 +245,9 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
   frame.film.width = fw;
   frame.film.height = fh;
   frame.film.rgb.resize(pixels * 3);
-#pragma omp parallel for schedule(static)
-  for (long long p = 0; p < (long long)pixels; ++p)
+  parallelFor(0LL, (long long)(pixels), [&](long long p) {
     for (int c = 0; c < 3; ++c) frame.film.rgb[3 * p + c] = radiance_[p][c];
+  });
   if (output_window_ != win) {  // the ring of adaptive AA's neighbours is not output
     const PixelWindow& out = output_window_;
     keepWindow(frame.film.rgb, win, out, 3);
@@ -285,11 +282,11 @@ void Renderer::renderInBands(Frame& frame, const PixelWindow& window, int spp, f
                            std::min(window.y1, window.y0 + (band + 1) * rows)};
     if (window_pixels_width_ != settings_.width || window_pixels_band_ != part) {
       window_pixels_.resize(size_t(part.width()) * part.height());
-#pragma omp parallel for schedule(static)
-      for (int y = part.y0; y < part.y1; ++y)
+      parallelFor(int(part.y0), int(part.y1), [&](int y) {
         for (int x = part.x0; x < part.x1; ++x)
           window_pixels_[size_t(y - part.y0) * part.width() + (x - part.x0)] =
               (y - film_window_.y0) * film_window_.width() + (x - film_window_.x0);
+      });
       window_pixels_band_ = part;
       window_pixels_width_ = settings_.width;
     }
@@ -317,8 +314,7 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   } else if (centre_only && window) {  // the window's pixel centres, row by row
     camera_rays.centreWindow(*window, primary_rays_.data());
   } else {
-#pragma omp parallel for schedule(static)
-    for (long long k = 0; k < (long long)rendered; ++k) {
+    parallelFor(0LL, (long long)(rendered), [&](long long k) {
       const int f = window_pixels_[k], fw = film_window_.width();
       const int x = film_window_.x0 + f % fw, y = film_window_.y0 + f / fw;
       const uint32_t p =
@@ -329,7 +325,7 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
         size_t r = size_t(k) * spp + s;
         primary_rays_[r] = camera_rays(x, y, sx, sy);
       }
-    }
+    });
   }
   frame.times.generate_ms += clock.ms();
 
@@ -411,10 +407,10 @@ void Renderer::addPassRadiance(int depths, PrimaryPaths primary) {
           [&](size_t i) { radiance_[ps[i].pixel] += local[i]; });
     } else if (!g.radiance_in_pixels) {
       // Primary rays: each pixel's samples are consecutive, pixels distinct.
-#pragma omp parallel for schedule(static)
-      for (long long k = 0; k < (long long)(local.size() / primary.spp); ++k)
+      parallelFor(0LL, (long long)((local.size() / primary.spp)), [&](long long k) {
         for (int s = 0; s < primary.spp; ++s)
           radiance_[window_pixels_[k]] += local[size_t(k) * primary.spp + s];
+      });
     }
     const ShadowRay* shadows = shadows_.data() + g.first_shadow;
     const GrHit* hits = shadow_hits_.data() + g.first_shadow;
@@ -473,8 +469,7 @@ size_t Renderer::shadeHeadlight(int depth, const std::vector<GrRay>& rays, Prima
   const glm::vec3 weight(primary.weight);
   const bool into_pixels = primary.spp == 1;
   g.radiance_in_pixels = into_pixels;
-#pragma omp parallel for schedule(static)
-  for (long long i = 0; i < (long long)n; ++i) {
+  parallelFor(0LL, (long long)(n), [&](long long i) {
     const GrHit& hit = g.hits[i];
     glm::vec3 value;
     if (hit.prim < 0) {
@@ -491,7 +486,7 @@ size_t Renderer::shadeHeadlight(int depth, const std::vector<GrRay>& rays, Prima
       radiance_[window_pixels_[i]] += value;
     else
       local[i] = value;
-  }
+  });
   frame.times.shade_ms += clock.ms();
   g.first_shadow = shadow_offset;
   g.shadow_count = 0;
@@ -520,8 +515,7 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
   const size_t chunks = (n + kShadeChunkRays - 1) / kShadeChunkRays;
   if (spawned_.size() < chunks) spawned_.resize(chunks);
 
-#pragma omp parallel for schedule(dynamic, 1)
-  for (long long chunk = 0; chunk < (long long)chunks; ++chunk) {
+  parallelForDynamic(0LL, (long long)(chunks), 1LL, [&](long long chunk) {
     Spawned& out = spawned_[chunk];
     out.shadow_count = 0;
     out.ray_count = 0;
@@ -639,7 +633,7 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
         }
       }
     }
-  }
+  });
   frame.times.shade_ms += clock.ms();
 
   // The shadow rays after the earlier depths' (traced after the last depth).
@@ -666,12 +660,11 @@ size_t Renderer::concatenateChunks(size_t chunks, std::vector<GrRay> Spawned::*r
     chunk_offsets_[c + 1] = chunk_offsets_[c] + spawned_[c].*count;
   if (all_rays.size() < chunk_offsets_[chunks]) all_rays.resize(chunk_offsets_[chunks]);
   if (all_extras.size() < chunk_offsets_[chunks]) all_extras.resize(chunk_offsets_[chunks]);
-#pragma omp parallel for schedule(static)
-  for (long long c = 0; c < (long long)chunks; ++c) {
+  parallelFor(0LL, (long long)(chunks), [&](long long c) {
     const Spawned& out = spawned_[c];
     std::copy_n((out.*rays).begin(), out.*count, all_rays.begin() + chunk_offsets_[c]);
     std::copy_n((out.*extras).begin(), out.*count, all_extras.begin() + chunk_offsets_[c]);
-  }
+  });
   return chunk_offsets_[chunks] - offset;
 }
 

@@ -1,11 +1,13 @@
 // The rendering options reach the renderer: each of --aa, --intersector, --pe-interrupt,
-// --camera, --grid-density, --min-path-weight, --ambient and --stats, given on the command
-// line, changes what the program does in the way its help text says (the image, the AOVs,
-// the rays traced or the grid in --stats-json), against the same render without it. And
+// --threads, --camera, --grid-density, --min-path-weight, --ambient and --stats, given on
+// the command line, changes what the program does in the way its help text says (the
+// image, the AOVs, the rays traced or the grid in --stats-json), against the same render
+// without it. And
 // bad values of --look-at, --fov and --stats-json end the run with one line and the
 // documented exit code (2 for usage, 1 otherwise).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -114,13 +116,28 @@ TEST_F(CliOptions, IntersectorWatertightRunsAnotherRayTriangleTest) {
 // pairs are skipped depends on the order the work-groups run in: both renders run on one
 // PoCL thread, which runs them in order, so the counts are the same from run to run.
 TEST_F(CliOptions, PeInterruptSkipsPairsInEveryBatchWithTheSameImage) {
-  setenv("POCL_MAX_PTHREAD_COUNT", "1", 1);
-  const Render camera_only = render("interrupt_camera", {});
-  const Render all = render("interrupt", {"--pe-interrupt"});
-  unsetenv("POCL_MAX_PTHREAD_COUNT");
+  const Render camera_only = render("interrupt_camera", {"--threads", "1"});
+  const Render all = render("interrupt", {"--pe-interrupt", "--threads", "1"});
   EXPECT_GT(all.stats["interrupt"]["skipped_pairs"].get<uint64_t>(),
             camera_only.stats["interrupt"]["skipped_pairs"].get<uint64_t>());
   EXPECT_EQ(differingPixels(plain_.image, all.image), 0u);
+}
+
+// --threads N limits the host's loops and PoCL's threads together; the image does not
+// depend on the count (every parallel loop splits its range by count, never by timing).
+TEST_F(CliOptions, ThreadsSetsTheHostAndDeviceThreadCountsNotTheImage) {
+  for (const char* threads : {"1", "3"}) {
+    const Render limited = render(std::string("threads") + threads, {"--threads", threads});
+    EXPECT_EQ(limited.stats["host_threads"].get<int>(), std::atoi(threads));
+    // PoCL runs at most one thread a CPU.
+    EXPECT_EQ(limited.stats["device_compute_units"].get<int>(),
+              std::min(std::atoi(threads), plain_.stats["device_compute_units"].get<int>()));
+    EXPECT_EQ(differingPixels(plain_.image, limited.image), 0u) << threads << " threads";
+    EXPECT_EQ(differingPixels(plain_.depth, limited.depth), 0u) << threads << " threads";
+  }
+  const CommandResult bad = runCommand({gridrtBinary(), "--threads", "-1"});
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("--threads"), std::string::npos) << bad.err;
 }
 
 // A finer grid changes the PEs, never the hits.

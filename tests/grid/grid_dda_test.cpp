@@ -5,7 +5,6 @@
 #include "grid_dda.h"
 
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,6 +17,7 @@
 #include <vector>
 
 #include "dda_packet.h"
+#include "parallel_loops.h"
 #include "prepared_triangles.h"
 #include "scene.h"
 #include "traversal_lists.h"
@@ -698,10 +698,9 @@ TEST(TraversalLists, MatchTheDdaWalkFilteredToNonEmptyVoxels) {
   rays.push_back({kNaN, 0, 0, 0, 1, 0, 0, kInf});  // misses
 
   TraversalLists lists;
-  int saved = omp_get_max_threads();
   size_t total_entries = 0;
   for (int threads : {1, 3, 8}) {
-    omp_set_num_threads(threads);
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     for (size_t count : {rays.size(), size_t(0), size_t(2), rays.size() / 2}) {
       SCOPED_TRACE(std::to_string(threads) + " threads, " + std::to_string(count) + " rays");
       computeTraversalLists(grid, rays.data(), count, lists);  // reuses the scratch
@@ -709,7 +708,6 @@ TEST(TraversalLists, MatchTheDdaWalkFilteredToNonEmptyVoxels) {
       if (count == rays.size()) total_entries = lists.entries.size();
     }
   }
-  omp_set_num_threads(saved);
   EXPECT_GT(total_entries, rays.size());  // the rays really pierce PEs
   EXPECT_EQ(lists.rayCount(), rays.size() / 2);
 }

@@ -5,7 +5,6 @@
 #include "uniform_grid.h"
 
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <array>
@@ -16,6 +15,7 @@
 #include <vector>
 
 #include "gltf_loader.h"
+#include "parallel_loops.h"
 #include "prepared_triangles.h"
 #include "scene.h"
 #include "test_support.h"
@@ -264,12 +264,12 @@ TEST(UniformGrid, EveryTriangleIsInEveryVoxelItOverlapsAndNoOtherOnTheBunny) {
 TEST(UniformGrid, ListsDoNotDependOnTheThreadCount) {
   Scene scene = sceneOf(randomSoup(7, 400, {0, 0, 0}, {4, 4, 4}));
   auto tris = prepareTriangles(scene);
-  int saved = omp_get_max_threads();
-  omp_set_num_threads(1);
-  UniformGrid one = buildUniformGrid(tris, sceneBounds(scene), fixedDims(6, 5, 4));
-  omp_set_num_threads(7);
-  UniformGrid seven = buildUniformGrid(tris, sceneBounds(scene), fixedDims(6, 5, 4));
-  omp_set_num_threads(saved);
+  auto buildWith = [&](int threads) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return buildUniformGrid(tris, sceneBounds(scene), fixedDims(6, 5, 4));
+  };
+  UniformGrid one = buildWith(1);
+  UniformGrid seven = buildWith(7);
   expectWellFormed(seven, tris);
   EXPECT_EQ(one.pe_of_voxel, seven.pe_of_voxel);
   EXPECT_EQ(one.voxel_of_pe, seven.voxel_of_pe);

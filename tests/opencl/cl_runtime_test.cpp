@@ -1,15 +1,15 @@
-// ClRuntime::runWithHostThreadsAsleep: the commands `enqueue` queues have all run when it
-// returns, from any OpenMP thread count, and an exception from `enqueue` comes out of it
+// ClRuntime::runAndWait: the commands `enqueue` queues have all run when it
+// returns, from any host thread count, and an exception from `enqueue` comes out of it
 // (a throw that left the parallel region inside would end the process).
 #include "cl_runtime.h"
 
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <numeric>
 #include <vector>
 
 #include "errors.h"
+#include "parallel_loops.h"
 
 namespace {
 
@@ -21,27 +21,24 @@ TEST(ClRuntime, CommandsHaveRunWhenItReturns) {
   std::vector<int> source(n), back(n, -1);
   std::iota(source.begin(), source.end(), 0);
   cl::Buffer buffer(rt.context(), CL_MEM_READ_WRITE, n * sizeof(int));
-  const int default_threads = omp_get_max_threads();
   for (int threads : {1, 2, 4}) {
-    omp_set_num_threads(threads);
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     std::fill(back.begin(), back.end(), -1);
-    rt.runWithHostThreadsAsleep([&] {
+    rt.runAndWait([&] {
       rt.queue().enqueueWriteBuffer(buffer, CL_FALSE, 0, n * sizeof(int), source.data());
       rt.queue().enqueueReadBuffer(buffer, CL_FALSE, 0, n * sizeof(int), back.data());
     });
     EXPECT_EQ(back, source) << threads << " threads";
   }
-  omp_set_num_threads(default_threads);
 }
 
 TEST(ClRuntime, AnExceptionFromEnqueueIsRethrown) {
   ClRuntime rt("");
-  EXPECT_THROW(rt.runWithHostThreadsAsleep([] { throw gridrt::RenderError("no room"); }),
-               gridrt::RenderError);
+  EXPECT_THROW(rt.runAndWait([] { throw gridrt::RenderError("no room"); }), gridrt::RenderError);
   // The runtime still works afterwards.
   int value = 0;
   cl::Buffer buffer(rt.context(), CL_MEM_READ_WRITE, sizeof(int));
-  rt.runWithHostThreadsAsleep([&] {
+  rt.runAndWait([&] {
     const int seven = 7;
     rt.queue().enqueueWriteBuffer(buffer, CL_TRUE, 0, sizeof(int), &seven);
     rt.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, sizeof(int), &value);

@@ -12,6 +12,7 @@
 #include "cl_runtime.h"
 #include "gltf_loader.h"
 #include "image_output.h"
+#include "parallel_loops.h"
 #include "reference_intersector.h"
 #include "test_support.h"
 
@@ -30,8 +31,7 @@ std::vector<DoubleHit> referenceHits(const Scene& scene, int w, int h) {
   const glm::dvec3 origin(world[3]);
   std::vector<DoubleHit> out(size_t(w) * h);
   const size_t tris = scene.triangleCount();
-#pragma omp parallel for schedule(dynamic, 16)
-  for (int j = 0; j < h; ++j)
+  parallelForDynamic(int(0), int(h), int(16), [&](int j) {
     for (int i = 0; i < w; ++i) {
       glm::dvec3 d((2.0 * (i + 0.5) / w - 1.0) * tan_half * aspect,
                    (1.0 - 2.0 * (j + 0.5) / h) * tan_half, -1.0);
@@ -50,6 +50,7 @@ std::vector<DoubleHit> referenceHits(const Scene& scene, int w, int h) {
       }
       out[size_t(j) * w + i] = best;
     }
+  });
   return out;
 }
 

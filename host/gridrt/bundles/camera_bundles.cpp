@@ -1,9 +1,9 @@
 #include "camera_bundles.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
+
+#include "parallel_loops.h"
 
 namespace gridrt {
 
@@ -162,13 +162,13 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   scratch.layout_width = ww;
   scratch.layout_height = wh;
   bundles.ray_of.resize(slots);
-#pragma omp parallel for schedule(static) if (!same_layout)
-  for (long long b = 0; b < (same_layout ? 0 : (long long)slots); ++b) {
-    int tile = int(b / GR_PACKET_LANES), lane = int(b % GR_PACKET_LANES);
-    int x = (tile % tiles_x) * kTileSize + lane % kTileSize;
-    int y = (tile / tiles_x) * kTileSize + lane / kTileSize;
-    bundles.ray_of[b] = x < ww && y < wh ? y * ww + x : -1;
-  }
+  if (!same_layout)
+    parallelFor(size_t(0), slots, [&](size_t b) {
+      int tile = int(b / GR_PACKET_LANES), lane = int(b % GR_PACKET_LANES);
+      int x = (tile % tiles_x) * kTileSize + lane % kTileSize;
+      int y = (tile / tiles_x) * kTileSize + lane / kTileSize;
+      bundles.ray_of[b] = x < ww && y < wh ? y * ww + x : -1;
+    });
 
   // Per PE and tile row, the run of tiles whose pixel centres may see the voxel: the
   // projected box's extent in the row band, grown on every side by cameraOutlineMargin
@@ -180,8 +180,7 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   const glm::vec3 eye = glm::vec3(glm::inverse(view.world_to_camera)[3]);
   auto& order = scratch.near_first;
   order.resize(pes);
-#pragma omp parallel for schedule(static)
-  for (int pe = 0; pe < pes; ++pe) {
+  parallelFor(int(0), int(pes), [&](int pe) {
     float distance = 0.0f;
     if (near_first) {
       glm::vec3 lo, hi;
@@ -189,17 +188,15 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
       distance = glm::length(0.5f * (lo + hi) - eye);
     }
     order[pe] = {distance, pe};
-  }
+  });
   if (near_first) std::sort(order.begin(), order.end());
-  const int threads = omp_get_max_threads();
-  thread_runs.resize(threads);
-#pragma omp parallel num_threads(threads)
-  {
-    std::vector<TileRun>& runs = thread_runs[omp_get_thread_num()];
+  thread_runs.resize(parallelSliceCount());
+  parallelSlices(int(thread_runs.size()), [&](int me, int count) {
+    std::vector<TileRun>& runs = thread_runs[me];
     runs.clear();
     std::vector<glm::dvec2> hull;
-#pragma omp for schedule(static)
-    for (int k = 0; k < pes; ++k) {
+    const auto [k_begin, k_end] = sliceRange(size_t(pes), me, count);
+    for (int k = int(k_begin); k < int(k_end); ++k) {
       const int pe = order[k].second;
       glm::vec3 lo, hi;
       grid.voxelBoxOfPe(pe, lo, hi);
@@ -244,7 +241,7 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
         if (tx0 < tx1) runs.push_back(TileRun{pe, ty, tx0, tx1});
       }
     }
-  }
+  });
   // Tasks in tile-row order (PE order within a row): consecutive work-groups read
   // neighbouring rays, and phase 2 updates one band of the image at a time.
   row_start.assign(tiles_y + 1, 0);

@@ -1,10 +1,10 @@
 #include "light_bundles.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "parallel_loops.h"
 
 namespace gridrt {
 
@@ -88,15 +88,15 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
   // ends lie from the light.
   scratch.face_of.resize(count);
   scratch.uv.resize(2 * count);
-  const int threads = omp_get_max_threads();
+  const int slices = parallelSliceCount();
   auto& thread_windows = scratch.thread_windows;
-  thread_windows.assign(threads, std::array<FaceWindow, 6>{});
-  float miss = 0.0f;
-#pragma omp parallel num_threads(threads) reduction(max : miss)
-  {
-    std::array<FaceWindow, 6>& windows = thread_windows[omp_get_thread_num()];
-#pragma omp for schedule(static)
-    for (long long r = 0; r < (long long)count; ++r) {
+  thread_windows.assign(slices, std::array<FaceWindow, 6>{});
+  std::vector<float> slice_miss(slices, 0.0f);
+  parallelSlices(slices, [&](int me, int n) {
+    std::array<FaceWindow, 6>& windows = thread_windows[me];
+    float& miss = slice_miss[me];
+    const auto [r0, r1] = sliceRange(count, me, n);
+    for (size_t r = r0; r < r1; ++r) {
       const GrRay& ray = rays[r];
       const glm::vec3 d(ray.dx, ray.dy, ray.dz);
       const float off = missOfLight(ray, light);
@@ -109,11 +109,12 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
       scratch.uv[2 * r + 1] = v;
       windows[face].add(u, v);
     }
-  }
+  });
+  const float miss = *std::max_element(slice_miss.begin(), slice_miss.end());
   // Each face's cells cover the window its rays occupy, about kLightRaysPerCell a cell.
   std::array<FaceWindow, 6>& faces = scratch.faces;
   faces = thread_windows[0];
-  for (int t = 1; t < threads; ++t)
+  for (int t = 1; t < slices; ++t)
     for (int f = 0; f < 6; ++f) faces[f].merge(thread_windows[t][f]);
   int rows = 0;
   size_t cells = 0;
@@ -123,54 +124,49 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
     cells += size_t(w.res) * w.res;
   }
   scratch.cell_of.resize(count);
-#pragma omp parallel for schedule(static)
-  for (long long r = 0; r < (long long)count; ++r)
+  parallelFor(0LL, (long long)(count), [&](long long r) {
     scratch.cell_of[r] =
         int(faces[scratch.face_of[r]].cellOf(scratch.uv[2 * r], scratch.uv[2 * r + 1]));
+  });
 
   // Bundle order: counting sort by cell, padded to whole packets. Stable and parallel:
-  // each thread counts its own range of rays, and its rays of a cell follow the rays of
-  // that cell from the threads before it.
+  // each slice counts its own range of rays, and its rays of a cell follow the rays of
+  // that cell from the slices before it.
   std::vector<int>& start = scratch.cell_start;
   start.assign(cells + 1, 0);
   bundles.ray_of.resize((count + GR_PACKET_LANES - 1) / GR_PACKET_LANES * GR_PACKET_LANES);
-  scratch.thread_counts.resize(threads);
-#pragma omp parallel num_threads(threads)
-  {
-    const int me = omp_get_thread_num(), n = omp_get_num_threads();
-    const size_t r0 = count * me / n, r1 = count * (me + 1) / n;
+  scratch.thread_counts.resize(slices);
+  parallelSlices(slices, [&](int me, int n) {
+    const auto [r0, r1] = sliceRange(count, me, n);
     std::vector<int>& mine = scratch.thread_counts[me];
     mine.assign(cells, 0);
     for (size_t r = r0; r < r1; ++r) ++mine[scratch.cell_of[r]];
-#pragma omp barrier
-#pragma omp single
-    {
-      int offset = 0;
-      for (size_t c = 0; c < cells; ++c) {
-        start[c] = offset;
-        for (int t = 0; t < n; ++t) {
-          const int k = scratch.thread_counts[t][c];
-          scratch.thread_counts[t][c] = offset;
-          offset += k;
-        }
-      }
-      start[cells] = offset;
+  });
+  int offset = 0;
+  for (size_t c = 0; c < cells; ++c) {
+    start[c] = offset;
+    for (int t = 0; t < slices; ++t) {
+      const int k = scratch.thread_counts[t][c];
+      scratch.thread_counts[t][c] = offset;
+      offset += k;
     }
-    for (size_t r = r0; r < r1; ++r) bundles.ray_of[mine[scratch.cell_of[r]]++] = int(r);
-#pragma omp for schedule(static)
-    for (long long b = (long long)count; b < (long long)bundles.ray_of.size(); ++b)
-      bundles.ray_of[b] = -1;
   }
+  start[cells] = offset;
+  parallelSlices(slices, [&](int me, int n) {
+    const auto [r0, r1] = sliceRange(count, me, n);
+    std::vector<int>& mine = scratch.thread_counts[me];
+    for (size_t r = r0; r < r1; ++r) bundles.ray_of[mine[scratch.cell_of[r]]++] = int(r);
+  });
+  std::fill(bundles.ray_of.begin() + count, bundles.ray_of.end(), -1);
 
   // Boxes are grown by the rays' largest miss of the light (rounding of the corners'
   // projections is covered by kLightFaceMargin, in cellRange).
   const float slack = kLightSlackFactor * miss;
 
   const int pes = grid.peCount();
-  scratch.thread_runs.resize(threads);
-#pragma omp parallel num_threads(threads)
-  {
-    auto& runs = scratch.thread_runs[omp_get_thread_num()];
+  scratch.thread_runs.resize(slices);
+  parallelSlices(slices, [&](int me, int count) {
+    auto& runs = scratch.thread_runs[me];
     runs.clear();
     auto addRow = [&](int pe, int face, int r, int c0, int c1) {
       const FaceWindow& fw = faces[face];
@@ -179,8 +175,8 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
       if (last > first)
         runs.push_back(LightBundleScratch::Run{pe, fw.first_row + r, first, last - first});
     };
-#pragma omp for schedule(static)
-    for (int pe = 0; pe < pes; ++pe) {
+    const auto [pe_begin, pe_end] = sliceRange(size_t(pes), me, count);
+    for (int pe = int(pe_begin); pe < int(pe_end); ++pe) {
       glm::vec3 lo, hi;
       grid.voxelBoxOfPe(pe, lo, hi);
       lo -= slack;
@@ -227,7 +223,7 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
         for (int r = r0; r < r1; ++r) addRow(pe, face, r, c0, c1);
       }
     }
-  }
+  });
   // Tasks in cell-row order: neighbouring work-groups read neighbouring rays, and phase 2
   // updates one stretch of bundle order at a time.
   auto& row_start = scratch.row_start;

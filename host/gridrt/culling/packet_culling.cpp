@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "outward_rounding.h"
+#include "parallel_loops.h"
 #include "prepared_triangles.h"
 
 namespace gridrt {
@@ -76,12 +77,11 @@ void computeCullBoxes(const GrCullFrame& frame, const glm::vec3& origin,
                       double error_factor) {
   boxes.resize(triangles.size());
   const glm::dvec3 o(origin);
-#pragma omp parallel for schedule(static)
-  for (long long k = 0; k < (long long)triangles.size(); ++k) {
+  parallelFor(0LL, (long long)(triangles.size()), [&](long long k) {
     glm::dvec3 v[3];
     triangleVertices(triangles[k], v);
     boxes[k] = boxOf(frame, o, v, error_factor);
-  }
+  });
 }
 
 bool CullPlaneCache::update(const GrCullFrame& frame, const glm::vec3& origin,
@@ -92,13 +92,12 @@ bool CullPlaneCache::update(const GrCullFrame& frame, const glm::vec3& origin,
   computeCullBoxes(frame, origin, triangles, boxes_);
   const size_t stride = triangles.size() + kCullPlanePadding;
   planes_.assign(4 * stride, 0.0f);
-#pragma omp parallel for schedule(static)
-  for (long long i = 0; i < (long long)boxes_.size(); ++i) {
+  parallelFor(0LL, (long long)(boxes_.size()), [&](long long i) {
     planes_[i] = boxes_[i].amin;
     planes_[stride + i] = boxes_[i].amax;
     planes_[2 * stride + i] = boxes_[i].bmin;
     planes_[3 * stride + i] = boxes_[i].bmax;
-  }
+  });
   frame_ = frame;
   origin_ = origin;
   valid_ = true;

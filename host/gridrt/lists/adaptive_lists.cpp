@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "grid_dda.h"
+#include "parallel_loops.h"
 
 namespace gridrt {
 
@@ -96,8 +97,7 @@ void computeAdaptiveLists(const UniformGrid& grid, const GrRay* rays, size_t cou
   if (lists.scratch.size() < chunks) lists.scratch.resize(chunks);
   lists.begin.resize(count + 1);
   lists.begin[0] = 0;
-#pragma omp parallel for schedule(dynamic, 1)
-  for (long long chunk = 0; chunk < (long long)chunks; ++chunk) {
+  parallelForDynamic(0LL, (long long)(chunks), 1LL, [&](long long chunk) {
     auto& out = lists.scratch[chunk];
     out.clear();
     const size_t first = size_t(chunk) * kListChunkRays;
@@ -107,7 +107,7 @@ void computeAdaptiveLists(const UniformGrid& grid, const GrRay* rays, size_t cou
       adaptiveList(grid, rays[r], out);
       lists.begin[r + 1] = int(out.size() - before);  // a count for now
     }
-  }
+  });
   gatherChunkLists(lists, count, chunks);
 }
 

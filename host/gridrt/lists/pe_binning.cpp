@@ -1,10 +1,10 @@
 #include "pe_binning.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
+
+#include "parallel_loops.h"
 
 namespace gridrt {
 
@@ -63,7 +63,7 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
              PeBins& bins, float* out) {
   if (task_rays <= 0 || task_rays % GR_PACKET_LANES != 0)
     throw std::invalid_argument("binByPe: task_rays must be a positive multiple of 16");
-  const int threads = omp_get_max_threads();
+  const int threads = parallelSliceCount();
   const size_t ray_count = lists.rayCount();
   const int parts = pe_count * kOctants;
   bins.thread_counts.resize(threads);
@@ -72,35 +72,33 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
     out = bins.pairs.data();
   }
   int lanes_total = 0;
-#pragma omp parallel num_threads(threads)
-  {
-    int t = omp_get_thread_num();
+  parallelSlices(threads, [&](int t, int) {
     auto& counts = bins.thread_counts[t];
     counts.assign(parts, 0);
-    size_t first = ray_count * t / threads, last = ray_count * (t + 1) / threads;
+    const auto [first, last] = sliceRange(ray_count, t, threads);
     for (size_t r = first; r < last; ++r) {
       const int octant = octantOf(rays[r]);
       for (int e = lists.begin[r]; e < lists.begin[r + 1]; ++e)
         ++counts[lists.entries[e].pe * kOctants + octant];
     }
-#pragma omp barrier
-#pragma omp single
-    {
-      // Exclusive prefix over (part, thread): thread t's pairs of a part follow thread
-      // t-1's; every part starts a packet.
-      bins.pairs_per_part.assign(parts, 0);
-      int offset = 0;
-      for (int part = 0; part < parts; ++part) {
-        offset = roundUpToPacket(offset);
-        for (int k = 0; k < threads; ++k) {
-          int c = bins.thread_counts[k][part];
-          bins.thread_counts[k][part] = offset;
-          offset += c;
-          bins.pairs_per_part[part] += c;
-        }
-      }
-      lanes_total = roundUpToPacket(offset);
+  });
+  // Exclusive prefix over (part, slice): slice t's pairs of a part follow slice t-1's;
+  // every part starts a packet.
+  bins.pairs_per_part.assign(parts, 0);
+  int offset = 0;
+  for (int part = 0; part < parts; ++part) {
+    offset = roundUpToPacket(offset);
+    for (int k = 0; k < threads; ++k) {
+      int c = bins.thread_counts[k][part];
+      bins.thread_counts[k][part] = offset;
+      offset += c;
+      bins.pairs_per_part[part] += c;
     }
+  }
+  lanes_total = roundUpToPacket(offset);
+  parallelSlices(threads, [&](int t, int) {
+    auto& counts = bins.thread_counts[t];
+    const auto [first, last] = sliceRange(ray_count, t, threads);
     for (size_t r = first; r < last; ++r) {
       const GrRay& ray = rays[r];
       const int octant = octantOf(ray);
@@ -109,7 +107,7 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
         writePair(out, counts[le.pe * kOctants + octant]++, ray, int(r), le);
       }
     }
-  }
+  });
   bins.packets = size_t(lanes_total / GR_PACKET_LANES);
   bins.tasks.clear();
   bins.pairs_per_pe.assign(pe_count, 0);

@@ -1,12 +1,11 @@
 #include "traversal_lists.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cstring>
 
 #include "adaptive_lists.h"
 #include "dda_packet.h"
+#include "parallel_loops.h"
 
 namespace gridrt {
 
@@ -26,15 +25,14 @@ void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t co
   const GrGridInfo& g = grid.info;
   const int stride = g.nx + g.ny + g.nz;
   const int lanes = ddaPacketLanes();
-  lists.packet_scratch.resize(omp_get_max_threads());
+  lists.packet_scratch.resize(threadSlotCount());
   for (auto& s : lists.packet_scratch) s.resize(lanes * size_t(stride));
-#pragma omp parallel for schedule(dynamic, 1)
-  for (long long chunk = 0; chunk < (long long)chunks; ++chunk) {
+  parallelForDynamic(0LL, (long long)(chunks), 1LL, [&](long long chunk) {
     auto& out = lists.scratch[chunk];
     out.clear();
     const size_t first = size_t(chunk) * kListChunkRays;
     const size_t last = std::min(count, first + kListChunkRays);
-    ListEntry* packet = lists.packet_scratch[omp_get_thread_num()].data();
+    ListEntry* packet = lists.packet_scratch[currentThreadSlot()].data();
     int found[kDdaPacketMaxLanes];
     for (size_t r = first; r < last; r += lanes) {
       const int n = int(std::min<size_t>(lanes, last - r));
@@ -44,20 +42,19 @@ void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t co
         lists.begin[r + k + 1] = found[k];  // a count for now
       }
     }
-  }
+  });
   gatherChunkLists(lists, count, chunks);
 }
 
 void gatherChunkLists(TraversalLists& lists, size_t count, size_t chunks) {
   for (size_t r = 0; r < count; ++r) lists.begin[r + 1] += lists.begin[r];
   lists.entries.resize(lists.begin[count]);
-#pragma omp parallel for schedule(static)
-  for (long long chunk = 0; chunk < (long long)chunks; ++chunk) {
+  parallelFor(0LL, (long long)(chunks), [&](long long chunk) {
     const auto& out = lists.scratch[chunk];
     if (!out.empty())
       std::memcpy(&lists.entries[lists.begin[size_t(chunk) * kListChunkRays]], out.data(),
                   out.size() * sizeof(ListEntry));
-  }
+  });
 }
 
 }  // namespace gridrt
