@@ -23,6 +23,7 @@
 #include "gridrt_intersector.h"
 #include "image_output.h"
 #include "memory_estimate.h"
+#include "missing_device.h"
 #include "parallel_loops.h"
 #include "prepared_triangles.h"
 #include "progress.h"
@@ -275,10 +276,7 @@ int runApplication(const Options& given) {
   const ThreadLimit thread_limit(given.threads);
   if (given.list_devices) {
     auto devices = listDevices();
-    if (devices.empty())
-      throw RenderError(
-          "no OpenCL platform found: install an OpenCL driver, e.g. 'apt-get "
-          "install pocl-opencl-icd'");
+    if (devices.empty()) throw RenderError(missingDeviceMessage(1));
     std::cout << formatDeviceTable(devices);
     return 0;
   }
@@ -316,7 +314,7 @@ int runApplication(const Options& given) {
   if (uses_grid) {
     GridSettings settings = o.grid;
     settings.ray_origins = primaryRayOrigins(camera, o.width, o.height);
-    if (o.accel == AccelKind::Dda) settings.adaptive = false;  // its kernel walks voxels
+    if (o.accel == AccelKind::Dda) settings.structure = GridStructure::Uniform;  // it walks voxels
     grid = buildGrid(triangles, sceneBounds(scene), settings);
   }
   double build_ms = clock.ms();

@@ -82,7 +82,9 @@ void parseGrid(const std::string& text, GridSettings& grid) {
   // auto: the default structure; adaptive / uniform pick one (adaptive_grid.h).
   if (text == "auto" || text == "adaptive" || text == "uniform") {
     grid.automatic = true;
-    if (text != "auto") grid.adaptive = text == "adaptive";
+    grid.structure = text == "auto"       ? GridStructure::WhereNeeded
+                     : text == "adaptive" ? GridStructure::Adaptive
+                                          : GridStructure::Uniform;
     return;
   }
   static const std::regex dims(R"(^(\d{1,4}),(\d{1,4}),(\d{1,4})$)");
@@ -205,7 +207,7 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
       ->capture_default_str()
       ->check(CLI::IsMember({"gridrt", "dda", "brute", "reference"}));
   app.add_option("--grid", raw.grid,
-                 "grid: auto (uniform), adaptive (refined where dense) or NX,NY,NZ")
+                 "grid: auto (adaptive if a voxel is full), adaptive, uniform or NX,NY,NZ")
       ->capture_default_str();
   app.add_option("--grid-density", o.grid.density,
                  "lambda of the auto resolution R_i = d_i*cbrt(lambda*N/V)")

@@ -134,12 +134,31 @@ void unite(TriangleSet& set, const GrTriangle* first, const GrTriangle* last,
 
 }  // namespace
 
-UniformGrid buildAdaptiveGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
-                              const GridSettings& settings) {
+namespace {
+
+// The uniform grid of the automatic resolution under the settings' density and margin.
+UniformGrid topGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
+                    const GridSettings& settings) {
   GridSettings top_settings = settings;
   top_settings.automatic = true;
-  top_settings.adaptive = false;
-  const UniformGrid top = buildUniformGrid(triangles, bounds, top_settings);
+  top_settings.structure = GridStructure::Uniform;
+  return buildUniformGrid(triangles, bounds, top_settings);
+}
+
+bool hasFullVoxel(const UniformGrid& grid, int max_leaf_triangles) {
+  for (int pe = 0; pe < grid.peCount(); ++pe)
+    if (grid.triangleCountOfPe(pe) > max_leaf_triangles) return true;
+  return false;
+}
+
+}  // namespace
+
+UniformGrid buildAdaptiveGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
+                              const GridSettings& settings) {
+  return adaptiveGridOver(topGrid(triangles, bounds, settings), settings);
+}
+
+UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& settings) {
   const GrGridInfo& g = top.info;
   const int top_pes = top.peCount();
   auto plane = [&](int a, int k) {
@@ -251,9 +270,13 @@ UniformGrid buildAdaptiveGrid(const std::vector<GrTriangle>& triangles, const Bo
 
 UniformGrid buildGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
                       const GridSettings& settings) {
-  if (settings.adaptive && settings.automatic)
-    return buildAdaptiveGrid(triangles, bounds, settings);
-  return buildUniformGrid(triangles, bounds, settings);
+  if (!settings.automatic || settings.structure == GridStructure::Uniform)
+    return buildUniformGrid(triangles, bounds, settings);
+  UniformGrid top = topGrid(triangles, bounds, settings);
+  if (settings.structure == GridStructure::WhereNeeded &&
+      !hasFullVoxel(top, settings.max_leaf_triangles))
+    return top;
+  return adaptiveGridOver(top, settings);
 }
 
 }  // namespace gridrt

@@ -40,8 +40,12 @@ constexpr int kMaxAdaptiveDepth = 3;
 UniformGrid buildAdaptiveGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
                               const GridSettings& settings);
 
-// The grid the settings ask for: adaptive when settings.adaptive and automatic, else
-// uniform.
+// The same over a top grid made already (the uniform grid of the automatic resolution).
+UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& settings);
+
+// The grid the settings ask for (GridSettings::structure; a fixed resolution is uniform).
+// WhereNeeded keeps the uniform grid when no voxel holds more than max_leaf_triangles: its
+// voxels already fit the scene (docs/adaptive-grid.md, "Default").
 UniformGrid buildGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
                       const GridSettings& settings);
 

@@ -32,12 +32,18 @@ constexpr double kGridMarginRel = 1e-5;
 constexpr int kMaxGridResolution = 512;
 constexpr long long kMaxGridVoxels = 1 << 24;
 
+// Uniform: the uniform grid. Adaptive: the adaptive structure. WhereNeeded (the command
+// line's --grid auto): the adaptive structure when a voxel of the uniform grid holds more
+// than max_leaf_triangles triangles, else the uniform grid itself.
+enum class GridStructure { Uniform, Adaptive, WhereNeeded };
+
 struct GridSettings {
   bool automatic = true;  // derive the resolution from N and the box's shape
   float density = kDefaultGridDensity;
   glm::ivec3 dims{1, 1, 1};            // used when !automatic
   double margin_rel = kGridMarginRel;  // tests set 0 to show what the margin prevents
-  bool adaptive = false;               // with automatic: the adaptive structure (adaptive_grid.h)
+  // With automatic: which structure buildGrid makes (adaptive_grid.h).
+  GridStructure structure = GridStructure::Uniform;
   // The adaptive structure splits a leaf holding more triangles than this (adaptive_grid.h:
   // kMaxLeafTriangles; tests set fewer to reach its deeper levels on small scenes).
   int max_leaf_triangles = 256;

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "errors.h"
+#include "missing_device.h"
 
 namespace gridrt {
 
@@ -137,12 +138,9 @@ std::string assembleKernelSource(const std::string& file) {
 ClRuntime::ClRuntime(const std::string& spec, const std::string& binary_cache_dir)
     : binaries_(binary_cache_dir) {
   auto platforms = platformsOrEmpty();
-  if (platforms.empty())
-    throw RenderError(
-        "no OpenCL platform found: install an OpenCL driver, e.g. 'apt-get install "
-        "pocl-opencl-icd'");
+  if (platforms.empty()) throw RenderError(missingDeviceMessage(0));
   auto devices = listDevices();
-  if (devices.empty()) throw RenderError("no OpenCL device found on any platform");
+  if (devices.empty()) throw RenderError(missingDeviceMessage(platforms.size()));
   const DeviceInfo* chosen = nullptr;
   if (spec.empty()) {
     chosen = &devices.front();

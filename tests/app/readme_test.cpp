@@ -4,7 +4,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "image_output.h"
 #include "options.h"
+#include "run_command.h"
 #include "test_support.h"
 
 namespace gridrt {
@@ -24,6 +26,22 @@ TEST(Readme, CliReferenceEqualsHelpText) {
   std::string help = helpText();
   while (!help.empty() && help.back() == '\n') help.pop_back();
   EXPECT_EQ(block, help + "\n") << "run tools/update_readme_cli.sh";
+}
+
+// The README's picture is what the program renders: the command of
+// tools/make_readme_images.sh, pixel for pixel (8-bit PNG codes decoded to floats).
+TEST(Readme, DefaultPictureIsWhatTheProgramRenders) {
+  const std::string fresh = test::tempPath("readme_default.png");
+  const test::CommandResult r = test::runCommand({test::gridrtBinary(), "-q", "-o", fresh});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const ImageData want = readImage(fresh);
+  const ImageData have = readImage(test::sourcePath("docs/images/default.png"));
+  ASSERT_EQ(have.width, want.width);
+  ASSERT_EQ(have.height, want.height);
+  ASSERT_EQ(have.channels, want.channels);
+  size_t differing = 0;
+  for (size_t i = 0; i < want.pixels.size(); ++i) differing += have.pixels[i] != want.pixels[i];
+  EXPECT_EQ(differing, 0u) << "run tools/make_readme_images.sh";
 }
 
 // The README is for users: at most kMaxReadmeBytes, the rest lives in docs/.

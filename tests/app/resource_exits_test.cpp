@@ -1,6 +1,7 @@
 // The exits no ordinary run reaches, forced through the environment: a kernel that does not
 // build (GRIDRT_KERNEL_OPTIONS) and a scene whose own data does not fit the device
-// (GRIDRT_MAX_BUFFER_BYTES). Each is exit 1 with one line naming the problem.
+// (GRIDRT_MAX_BUFFER_BYTES), and no device at all (POCL_CACHE_DIR, OCL_ICD_VENDORS). Each is
+// exit 1 with one line naming the problem.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -28,6 +29,26 @@ void expectOneLine(const test::CommandResult& r, int exit_code, const std::strin
   EXPECT_EQ(r.err.rfind("gridrt: ", 0), 0u) << r.err;
   EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
   EXPECT_NE(r.err.find(text), std::string::npos) << r.err;
+}
+
+// No device: the line says the likeliest cause. PoCL that cannot make its cache folder
+// (here a path under a regular file, which even root cannot create) reports no device at
+// all; no driver installed (the ICD loader pointed at an empty vendors folder) asks for one.
+TEST(ResourceExits, NoDeviceSaysWhy) {
+  const test::CommandResult cache = runWith("POCL_CACHE_DIR", "/etc/passwd/pocl-cache");
+  expectOneLine(cache, 1, "POCL_CACHE_DIR");
+  EXPECT_NE(cache.err.find("'/etc/passwd/pocl-cache'"), std::string::npos) << cache.err;
+  EXPECT_EQ(cache.err.find("install"), std::string::npos) << "PoCL is installed: " << cache.err;
+
+  const std::string empty = test::tempPath("no_vendors");
+  ASSERT_EQ(std::system(("mkdir -p '" + empty + "'").c_str()), 0);
+  const test::CommandResult none = runWith("OCL_ICD_VENDORS", empty);
+  expectOneLine(none, 1, "install an OpenCL driver");
+
+  setenv("POCL_CACHE_DIR", "/etc/passwd/pocl-cache", 1);
+  const test::CommandResult listed = test::runCommand({test::gridrtBinary(), "--list-devices"});
+  unsetenv("POCL_CACHE_DIR");
+  expectOneLine(listed, 1, "POCL_CACHE_DIR");
 }
 
 TEST(ResourceExits, AKernelThatDoesNotBuildNamesTheKernelAndTheCompilersWords) {

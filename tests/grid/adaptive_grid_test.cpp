@@ -32,7 +32,7 @@ Built build(float scale, int leaf) {
   const Scene scene = floorScene(bunny, scale);
   b.triangles = prepareTriangles(scene);
   GridSettings s;
-  s.adaptive = true;
+  s.structure = GridStructure::Adaptive;
   s.max_leaf_triangles = leaf;
   b.grid = buildAdaptiveGrid(b.triangles, sceneBounds(scene), s);
   return b;
@@ -49,6 +49,34 @@ bool inside(const glm::dvec3& p, const glm::dvec3& lo, const glm::dvec3& hi, dou
   for (int a = 0; a < 3; ++a)
     if (p[a] < lo[a] - grow || p[a] > hi[a] + grow) return false;
   return true;
+}
+
+// --grid auto (GridStructure::WhereNeeded) refines only where a voxel of the uniform grid
+// is fuller than the leaf limit: bunny_res4 alone keeps its uniform grid, voxel for voxel;
+// on a floor 100 times its size the model shares a voxel, which is refined.
+TEST(AdaptiveGrid, WhereNeededRefinesOnlyAUniformGridWithAFullVoxel) {
+  const Scene bunny = loadGltfFile(test::modelScene("bunny_res4.glb"));
+  GridSettings where_needed;
+  where_needed.structure = GridStructure::WhereNeeded;
+  const std::vector<GrTriangle> alone = prepareTriangles(bunny);
+  const UniformGrid kept = buildGrid(alone, sceneBounds(bunny), where_needed);
+  const UniformGrid uniform = buildGrid(alone, sceneBounds(bunny), GridSettings{});
+  EXPECT_TRUE(kept.adaptive.empty());
+  EXPECT_EQ(kept.pe_of_voxel, uniform.pe_of_voxel);
+  EXPECT_EQ(kept.pe_triangles.size(), uniform.pe_triangles.size());
+  int fullest = 0;
+  for (int pe = 0; pe < uniform.peCount(); ++pe)
+    fullest = std::max(fullest, uniform.triangleCountOfPe(pe));
+  ASSERT_LE(fullest, where_needed.max_leaf_triangles);
+
+  const Scene floor = floorScene(bunny, 100.0f);
+  const std::vector<GrTriangle> on_floor = prepareTriangles(floor);
+  const UniformGrid refined = buildGrid(on_floor, sceneBounds(floor), where_needed);
+  EXPECT_FALSE(refined.adaptive.empty());
+  EXPECT_GE(refined.adaptive.depth, 1);
+  // Just above the fullest voxel the bunny alone is still left as it is; just below, not.
+  where_needed.max_leaf_triangles = fullest - 1;
+  EXPECT_FALSE(buildGrid(alone, sceneBounds(bunny), where_needed).adaptive.empty());
 }
 
 TEST(AdaptiveGrid, LeavesHoldExactlyTheTrianglesOverlappingTheirGrownBoxes) {

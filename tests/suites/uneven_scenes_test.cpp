@@ -202,7 +202,7 @@ TEST_P(UnevenFamily, EveryPathMatchesBruteOnEveryPixel) {
   for (int leaf : {256, 32, 8})
     for (float density : {kDefaultGridDensity, 0.5f}) {
       GridSettings s;
-      s.adaptive = true;
+      s.structure = GridStructure::Adaptive;
       s.max_leaf_triangles = leaf;
       s.density = density;
       settings.push_back(s);
@@ -229,7 +229,7 @@ TEST_F(UnevenScenes, TheAdaptiveStructureMatchesBruteOnTheEvenScenes) {
     if (!scene.has_camera) scene.camera = defaultCamera(sceneBounds(scene));
     for (int leaf : {256, 16}) {
       GridSettings s;
-      s.adaptive = true;
+      s.structure = GridStructure::Adaptive;
       s.max_leaf_triangles = leaf;
       const int depth =
           expectAllPathsMatchBrute(scene, s, 96, 72, name + " leaf " + std::to_string(leaf));
