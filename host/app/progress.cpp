@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -21,6 +22,16 @@ std::string formatSeconds(double s) {
   else
     std::snprintf(text, sizeof text, "%d min %02d s", int(s) / 60, int(s) % 60);
   return text;
+}
+
+// Ctrl-C or a SIGTERM while the bar is drawn: end the bar's line, so the shell's prompt
+// starts on a line of its own, then die of the signal as before (the exit status a shell
+// expects: 130 for Ctrl-C). Only async-signal-safe calls.
+void endLineAndDie(int signal_number) {
+  static const char kNewline[] = "\n";
+  (void)!::write(STDERR_FILENO, kNewline, sizeof kNewline - 1);
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
 }
 
 }  // namespace
@@ -68,11 +79,20 @@ void ProgressBar::update(double fraction) {
   // "\033[K" erases what a longer previous line left to the right.
   std::fprintf(stderr, "\r%s\033[K", formatProgressLine(fraction, elapsed, remaining).c_str());
   std::fflush(stderr);
+  if (!drawn_) {
+    struct sigaction ends_line {};
+    ends_line.sa_handler = endLineAndDie;
+    sigemptyset(&ends_line.sa_mask);
+    sigaction(SIGINT, &ends_line, &previous_int_);
+    sigaction(SIGTERM, &ends_line, &previous_term_);
+  }
   drawn_ = true;
 }
 
 void ProgressBar::finish() {
   if (!drawn_) return;
+  sigaction(SIGINT, &previous_int_, nullptr);
+  sigaction(SIGTERM, &previous_term_, nullptr);
   std::fprintf(stderr, "\r\033[K");
   std::fflush(stderr);
   drawn_ = false;

@@ -3,7 +3,10 @@
 // Drawn only when stderr is a terminal and --quiet is off, and only once the render has
 // run for `delay_s` (quick renders print nothing but the closing summary). The line is
 // redrawn in place with '\r' and erased by finish(), so the summary line replaces it.
+// While it is drawn, SIGINT and SIGTERM end its line before the program dies of them.
 #pragma once
+#include <signal.h>
+
 #include <string>
 
 #include "stopwatch.h"
@@ -38,6 +41,8 @@ class ProgressBar {
   double delay_ms_;
   double last_draw_ms_ = -1e9;
   Stopwatch clock_;
+  struct sigaction previous_int_ {
+  }, previous_term_{};  // restored by finish()
 };
 
 // The text of the bar (without '\r'), for a given fraction, elapsed and remaining seconds.

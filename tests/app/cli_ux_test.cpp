@@ -100,6 +100,23 @@ TEST(Progress, BarIsDrawnOnATerminal) {
   EXPECT_NE(r.out.find("Mrays/s"), std::string::npos) << r.out;
 }
 
+// Ctrl-C (SIGINT) while the bar is drawn ends its line before the program dies of the
+// signal, so the shell's prompt does not start in the middle of the bar.
+TEST(Progress, InterruptEndsTheBarsLine) {
+  if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
+  if (!haveScript()) GTEST_SKIP() << "util-linux 'script' is not installed (a pseudo-terminal)";
+  ScopedEnv no_delay("GRIDRT_PROGRESS_DELAY", "0");
+  const std::string command = "timeout --preserve-status -s INT 3 " + gridrtBinary() +
+                              " --width 320 --height 240 --repeat 100000 -o " +
+                              tempPath("tty_interrupted.png");
+  CommandResult r = runCommand({"script", "-qec", command, "/dev/null"});
+  EXPECT_EQ(r.exit_code, 128 + 2) << "dies of SIGINT: " << r.out << r.err;
+  const size_t last_bar = r.out.rfind("left");
+  ASSERT_NE(last_bar, std::string::npos) << "the bar was drawn: " << r.out;
+  EXPECT_NE(r.out.find('\n', last_bar), std::string::npos)
+      << "the bar's line is ended: " << r.out.substr(last_bar);
+}
+
 TEST(Progress, QuietSuppressesTheBarOnATerminalToo) {
   if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
   if (!haveScript()) GTEST_SKIP() << "util-linux 'script' is not installed (a pseudo-terminal)";
