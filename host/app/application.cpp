@@ -13,6 +13,7 @@
 #include "adaptive_grid.h"
 #include "brute_intersector.h"
 #include "camera_rays.h"
+#include "choices_report.h"
 #include "cl_runtime.h"
 #include "crop_window.h"
 #include "dda_intersector.h"
@@ -318,6 +319,10 @@ int runApplication(const Options& given) {
     grid = buildGrid(triangles, sceneBounds(scene), settings);
   }
   double build_ms = clock.ms();
+  if (o.verbose)
+    for (const std::string& line :
+         choicesReport(o, scene, camera, uses_grid ? &grid : nullptr, build_ms))
+      std::cerr << "gridrt: " << line << '\n';
 
   clock.restart();
   GridRtIntersector* gridrt = nullptr;

@@ -150,6 +150,7 @@ void checkCombinations(Options& o, const RawOptions& raw) {
         "--grid-density: only with --grid auto (an explicit --grid fixes the "
         "resolution)");
   if (given("--crop-output") && !o.crop) throw UsageError("--crop-output: only with --crop");
+  if (o.verbose && o.quiet) throw UsageError("--verbose and --quiet: choose one");
   const bool has_pes = o.accel == AccelKind::GridRt || o.accel == AccelKind::Dda;
   for (const auto& aov : o.aovs)
     if (!has_pes && (aov.first == "pe" || aov.first == "listlen"))
@@ -230,6 +231,7 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.add_option("--stats-json", o.stats_json, "write statistics as JSON to FILE");
   app.add_flag("--stats", o.stats, "print a statistics table");
   app.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
+  app.add_flag("-v,--verbose", o.verbose, "print what was chosen: camera, lights, grid, passes");
   app.add_option("--background", raw.background, "background colour R,G,B (linear)");
   app.add_option("--ambient", o.ambient, "ambient factor (times diffuse albedo)")
       ->capture_default_str()

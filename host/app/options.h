@@ -42,6 +42,7 @@ struct Options {
   std::string stats_json;                                 // write statistics as JSON here
   bool stats = false;                                     // print a statistics table
   bool quiet = false;
+  bool verbose = false;  // -v: what was chosen (choices_report.h)
   glm::vec3 background{0.0f};
   float ambient = 0.05f;
   RayOffset ray_offset;

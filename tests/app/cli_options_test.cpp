@@ -140,6 +140,43 @@ TEST_F(CliOptions, ThreadsSetsTheHostAndDeviceThreadCountsNotTheImage) {
   EXPECT_NE(bad.err.find("--threads"), std::string::npos) << bad.err;
 }
 
+// -v says what was chosen, one line each: the default scene's lights, its default camera,
+// its grid (the glass sphere's voxels are full, so it is refined) and the passes; a bare
+// scene's added lights; nothing of it without -v; and -v with -q is a usage error.
+TEST_F(CliOptions, VerboseSaysWhatWasChosen) {
+  auto run = [](std::vector<std::string> argv) {
+    argv.insert(argv.begin(), gridrtBinary());
+    for (const char* a : {"--width", "64", "--height", "48", "-o"}) argv.push_back(a);
+    argv.push_back(tempPath("verbose.png"));
+    return runCommand(argv);
+  };
+  const CommandResult v = run({"-v"});
+  ASSERT_EQ(v.exit_code, 0) << v.err;
+  for (const char* line : {"gridrt: scene: the built-in default scene, 4438 triangles",
+                           "gridrt: camera: ", ", 64x48\n", "gridrt: grid: adaptive over ",
+                           "gridrt: render: gridrt, Whitted, up to 5 bounces, 1 sample a pixel"})
+    EXPECT_NE(v.err.find(line), std::string::npos) << line << " in:\n" << v.err;
+  // One triangle, no camera, no lights.
+  const std::string bare_scene = tempPath("bare.gltf");
+  std::ofstream(bare_scene)
+      << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+      << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"accessors":[{)"
+      << R"("bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],)"
+      << R"("max":[1,1,0]}],"bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{)"
+      << R"("byteLength":36,"uri":"data:application/octet-stream;base64,)"
+      << R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+  const CommandResult bare = run({"-v", bare_scene, "--primary-only", "--grid", "uniform"});
+  ASSERT_EQ(bare.exit_code, 0) << bare.err;
+  for (const char* line : {"no lights: a key and a fill light added", "the default three-quarter",
+                           "gridrt: grid: uniform ", "primary rays, headlight shading"})
+    EXPECT_NE(bare.err.find(line), std::string::npos) << line << " in:\n" << bare.err;
+  const CommandResult plain = run({});
+  EXPECT_EQ(plain.err.find("gridrt: grid:"), std::string::npos) << plain.err;
+  const CommandResult both = run({"-v", "-q"});
+  EXPECT_EQ(both.exit_code, 2) << both.err;
+  EXPECT_NE(both.err.find("--verbose and --quiet"), std::string::npos) << both.err;
+}
+
 // A finer grid changes the PEs, never the hits.
 TEST_F(CliOptions, GridDensityRefinesTheGridButNotTheImage) {
   const Render dense = render("dense", {"--grid-density", "2"});
