@@ -136,6 +136,8 @@ SceneSource loadScene(const Options& o, const FrameJob& first, Scene& first_scen
   SceneSource source;
   const bool posed = first.time.has_value();
   if (o.scene.empty()) {
+    if (!o.animation.empty())
+      throw UsageError("--animation '" + o.animation + "': the built-in scene has no animations");
     first_scene = loadDefaultScene(o);
     if (posed)
       source.warnings.push_back(

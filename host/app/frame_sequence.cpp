@@ -69,6 +69,10 @@ FrameRange parseFrameRange(const std::string& text) {
   if (!std::regex_match(text, m, range) || r.first > r.last || r.last > kMaxFrameNumber)
     throw UsageError("--frames: expected A:B, whole numbers with 0 <= A <= B <= " +
                      std::to_string(kMaxFrameNumber) + ", got '" + text + "'");
+  if (r.last - r.first + 1 > kMaxFramesPerRun)
+    throw UsageError("--frames: " + text + " is " + std::to_string(r.last - r.first + 1) +
+                     " frames, more than the " + std::to_string(kMaxFramesPerRun) +
+                     " of one run (split it into several runs)");
   return r;
 }
 

@@ -9,10 +9,13 @@ struct FrameRange {
   long first = 0, last = 0;  // inclusive, 0 <= first <= last
 };
 
-// The largest frame number --frames takes.
+// The largest frame number --frames takes, and the most frames one run renders (a run
+// lists its frames' files before it starts; 100,000 frames are 69 minutes at 24 fps).
 constexpr long kMaxFrameNumber = 9999999;
+constexpr long kMaxFramesPerRun = 100000;
 
-// "A:B" with 0 <= A <= B <= kMaxFrameNumber; throws UsageError naming --frames otherwise.
+// "A:B" with 0 <= A <= B <= kMaxFrameNumber and at most kMaxFramesPerRun frames; throws
+// UsageError naming --frames otherwise.
 FrameRange parseFrameRange(const std::string& text);
 
 // The time of frame `frame` at `fps` frames a second: frame / fps in double. The one place

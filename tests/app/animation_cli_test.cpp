@@ -223,6 +223,27 @@ TEST(AnimationCli, BadPatternsAreUsageErrorsAndWriteNothing) {
             std::string::npos)
       << unknown.err;
   EXPECT_EQ(test::listDir(dir), std::vector<std::string>{"animated.gltf"});
+  const test::CommandResult built_in =
+      runGridrt({"--time", "0", "--animation", "0", "-o", dir + "/x.png"});
+  EXPECT_EQ(built_in.exit_code, 2);
+  EXPECT_EQ(built_in.err, "gridrt: --animation '0': the built-in scene has no animations\n");
+  EXPECT_EQ(test::listDir(dir), std::vector<std::string>{"animated.gltf"});
+}
+
+TEST(AnimationCli, TheBuiltInSceneRendersTheSameAtAnyTime) {
+  // No animations: --frames renders its still pose into every frame, with a warning.
+  const std::string dir = test::freshDir("anim_builtin");
+  const test::CommandResult r =
+      test::runCommand({test::gridrtBinary(), "--frames", "0:1", "-o", dir + "/f_%d.exr", "--width",
+                        "32", "--height", "24"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: the built-in scene has no animations"), std::string::npos)
+      << r.err;
+  const test::CommandResult still = test::runCommand(
+      {test::gridrtBinary(), "-o", dir + "/still.exr", "--width", "32", "--height", "24"});
+  EXPECT_EQ(still.exit_code, 0) << still.err;
+  EXPECT_TRUE(samePixels(dir + "/f_0.exr", dir + "/still.exr"));
+  EXPECT_TRUE(samePixels(dir + "/f_1.exr", dir + "/still.exr"));
 }
 
 }  // namespace

@@ -61,6 +61,10 @@ TEST(FrameSequence, RangesAreWholeNumbersInOrder) {
   EXPECT_EQ(r.first, 3);
   EXPECT_EQ(r.last, 10);
   EXPECT_EQ(parseFrameRange("4:4").last, 4);
+  EXPECT_EQ(parseFrameRange("0:99999").last, 99999);
+  EXPECT_EQ(usageError([] { parseFrameRange("0:100000"); }),
+            "--frames: 0:100000 is 100001 frames, more than the 100000 of one run (split it "
+            "into several runs)");
   for (const char* bad : {"10:3", "3", "-1:2", "1:2:3", "a:b", "1.5:2", "1:99999999", ""})
     EXPECT_NE(usageError([&] { parseFrameRange(bad); }).find("--frames: expected A:B"),
               std::string::npos)
