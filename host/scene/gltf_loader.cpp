@@ -706,16 +706,15 @@ class SceneBuilder {
     const NodePose* pose = poseOf(index);
     if (!pose || !pose->movesTransform()) return localTransform(node, nodeName(index), label_);
     tinygltf::Node trs;
-    trs.translation = pose->translation ? std::vector<double>{pose->translation->x,
-                                                              pose->translation->y,
-                                                              pose->translation->z}
-                                        : node.translation;
+    trs.translation =
+        pose->translation
+            ? std::vector<double>{pose->translation->x, pose->translation->y, pose->translation->z}
+            : node.translation;
     trs.rotation = pose->rotation ? std::vector<double>{pose->rotation->x, pose->rotation->y,
                                                         pose->rotation->z, pose->rotation->w}
                                   : node.rotation;
-    trs.scale = pose->scale
-                    ? std::vector<double>{pose->scale->x, pose->scale->y, pose->scale->z}
-                    : node.scale;
+    trs.scale = pose->scale ? std::vector<double>{pose->scale->x, pose->scale->y, pose->scale->z}
+                            : node.scale;
     return localTransform(trs, nodeName(index), label_);
   }
 
