@@ -269,6 +269,16 @@ TEST(GltfAnimation, RefusesOtherMalformedSamplersAndChannels) {
             "exist (3 accessors)");
 }
 
+TEST(GltfAnimation, RefusesAZeroRotationKey) {
+  // Slerp would normalise it into NaN, and the node's triangles would vanish in silence.
+  GltfDocumentBuilder b;
+  const int times = b.floats({0, 1}, "SCALAR");
+  const int keys = b.floats({0, 0, 0, 1, 0, 0, 0, 0}, "VEC4");
+  EXPECT_EQ(animationError(badDocument(b, sampler(times, keys), channel(0, 0, "rotation"))),
+            "anim.gltf: animation 0 'Bad' sampler 0 (channel 0): rotation key 1 is a zero "
+            "quaternion");
+}
+
 TEST(GltfAnimation, WarnsAboutChannelsItCannotPlay) {
   GltfDocumentBuilder b;
   const int times = b.floats({0, 1}, "SCALAR");
