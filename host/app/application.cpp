@@ -550,7 +550,7 @@ int runApplication(const Options& given) {
   stats["programs"] = {{"loaded", runtime.programsLoaded()},
                        {"compiled", runtime.programsCompiled()}};
   if (sequence) {
-    stats["fps"] = o.fps;
+    stats["animation_fps"] = o.fps;  // --fps (not a rendering speed)
     stats["frames"] = std::move(frames);
   }
   // Peak memory: the process's resident set (on a CPU device it holds the device buffers

@@ -144,6 +144,7 @@ TEST(AnimationCli, StatisticsRecordEachFrameAndKernelsAreBuiltOnce) {
     return nlohmann::json::parse(test::readWholeFile(json));
   };
   const nlohmann::json one = stats("0:0"), three = stats("4:6");
+  EXPECT_EQ(three["animation_fps"], 10.0);
   ASSERT_EQ(three["frames"].size(), 3u);
   for (int i = 0; i < 3; ++i) {
     const nlohmann::json& f = three["frames"][size_t(i)];
