@@ -12,6 +12,7 @@ their own columns (load_ms, compile_ms, build_ms).
     .venv/bin/python tools/bench.py targets   # the four speed targets, Embree beside
     .venv/bin/python tools/bench.py single    # one render per process: wall time, peak memory
     .venv/bin/python tools/bench.py adaptive  # uneven scenes: uniform grid, adaptive, Embree, in turns
+    .venv/bin/python tools/bench.py dynamic   # moving scenes: rebuild + render per frame, gridrt and Embree
     .venv/bin/python tools/bench.py all
 """
 import argparse
@@ -734,10 +735,126 @@ def chart_adaptive(rows, path):
     fig.savefig(path, dpi=110)
 
 
+# The dynamic set: scenes that move (tools/make_dynamic_scenes.py, made into
+# build/dynamic_scenes when the set runs): the full bunny turning (rigid, through a node)
+# and sheets of 1k to 400k triangles whose every vertex moves (a morph target), DYNAMIC_FRAMES
+# frames at 24 fps each posed, rebuilt and rendered (DYNAMIC_MODES): gridrt --frames
+# (its grid rebuilt per frame) and Embree rebuilding its BVH per frame in the same renderer
+# (embree_peer --sequence), in turns, `rounds` rounds. Each figure is the median over the
+# frames after the first (which loads the file and builds the kernels) and the rounds.
+MAKE_DYNAMIC = os.path.join(ROOT, "tools", "make_dynamic_scenes.py")
+DYNAMIC_DIR = os.path.join(ROOT, "build", "dynamic_scenes")
+DYNAMIC_WAVES = [1000, 10000, 100000, 400000]
+DYNAMIC_FRAMES = 12
+# Whole Whitted frames, where tracing dominates, and primary rays at a small size, where
+# the rebuild does.
+DYNAMIC_MODES = [("whitted 640x480", 640, 480, []),
+                 ("primary 320x240", 320, 240, ["--primary-only"])]
+
+
+def dynamic_gridrt(path, w, h, extra):
+    with tempfile.TemporaryDirectory() as tmp:
+        stats = os.path.join(tmp, "stats.json")
+        subprocess.run([GRIDRT, path, "--frames", f"0:{DYNAMIC_FRAMES - 1}", "--fps", "24",
+                        "--width", str(w), "--height", str(h), "-q", *extra,
+                        "-o", os.path.join(tmp, "f_%04d.exr"), "--stats-json", stats], check=True)
+        with open(stats) as f:
+            s = json.load(f)
+    return [{"pose_ms": f["pose_ms"], "build_ms": f["build_ms"], "setup_ms": f["setup_ms"],
+             "render_ms": f["frame_ms"], "total_ms": f["wall_ms"], "triangles": f["triangles"]}
+            for f in s["frames"][1:]]
+
+
+def dynamic_embree(path, w, h, packet, extra):
+    out = subprocess.run([EMBREE_PEER, path, "--whitted", "--sequence",
+                          f"0:{DYNAMIC_FRAMES - 1}", "--fps", "24", "--width", str(w),
+                          "--height", str(h), "--threads", "2", "--packet", str(packet), *extra],
+                         check=True, capture_output=True, text=True).stdout
+    return [{"pose_ms": f["pose_ms"], "build_ms": f["build_ms"], "setup_ms": 0.0,
+             "render_ms": f["frame_ms"], "total_ms": f["wall_ms"], "triangles": f["triangles"]}
+            for f in json.loads(out)["frames"][1:]]
+
+
+def bench_dynamic(frames, rounds=None):
+    rounds = rounds or TARGET_RUNS
+    subprocess.run([sys.executable, MAKE_DYNAMIC, DYNAMIC_DIR, "--sizes",
+                    ",".join(map(str, DYNAMIC_WAVES))], check=True, capture_output=True)
+    scenes = [("bunny_spin", os.path.join(DYNAMIC_DIR, "bunny_spin.glb"))] + [
+        (f"wave_{n}", os.path.join(DYNAMIC_DIR, f"wave_{n}.glb")) for n in DYNAMIC_WAVES]
+    peer = os.path.exists(EMBREE_PEER)
+    if not peer:
+        print(f"no {EMBREE_PEER} (tools/setup.sh --bench builds it): Embree columns left out")
+    rows = []
+    for mode, w, h, extra in DYNAMIC_MODES:
+        for name, path in scenes:
+            results = {"gridrt": []}
+            if peer:
+                results.update({label: [] for label, _ in EMBREE_VARIANTS})
+            for _ in range(rounds):
+                results["gridrt"] += dynamic_gridrt(path, w, h, extra)
+                if peer:
+                    for label, packet in EMBREE_VARIANTS:
+                        results[label] += dynamic_embree(path, w, h, packet, extra)
+            base = {}
+            for variant, runs in results.items():
+                r = {"mode": mode, "scene": name, "variant": variant,
+                     "moving_triangles": runs[0]["triangles"], "width": w, "height": h,
+                     "frames": len(runs)}
+                for key in ("pose_ms", "build_ms", "setup_ms", "render_ms", "total_ms"):
+                    r[key] = statistics.median(x[key] for x in runs)
+                r["build_share"] = r["build_ms"] / r["total_ms"]
+                rows.append(r)
+                base[variant] = r
+            for r in base.values():
+                for label, _ in EMBREE_VARIANTS:
+                    if label in base:
+                        r["vs_" + label.replace(" ", "_")] = r["total_ms"] / base[label]["total_ms"]
+            print(f"dynamic {mode} {name:12s}: " + ", ".join(
+                f"{v} {r['total_ms']:.1f} ms/frame (build {r['build_ms']:.1f})"
+                for v, r in base.items()), flush=True)
+    return rows
+
+
+def chart_dynamic(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    modes = list(dict.fromkeys(r["mode"] for r in rows))
+    fig, axes = plt.subplots(1, len(modes) + 1, figsize=(6 * (len(modes) + 1), 4.5))
+    colours = {}
+    for ax, mode in zip(axes, modes):
+        waves = [r for r in rows if r["mode"] == mode and r["scene"].startswith("wave_")]
+        for variant in dict.fromkeys(r["variant"] for r in waves):
+            pts = sorted((r["moving_triangles"], r["total_ms"], r["build_ms"]) for r in waves
+                         if r["variant"] == variant)
+            line = ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o",
+                           label=f"{variant}: frame")[0]
+            colours[variant] = line.get_color()
+            ax.plot([p[0] for p in pts], [p[2] for p in pts], marker="x", ls="--",
+                    color=line.get_color(), label=f"{variant}: rebuild")
+        ax.set(xscale="log", yscale="log", xlabel="moving triangles (every vertex, every frame)",
+               ylabel="ms per frame", title=f"wave sheets, {mode}")
+        ax.legend(fontsize=7)
+    spin = [r for r in rows if r["scene"] == "bunny_spin"]
+    labels = [f"{r['variant']}\n{r['mode']}" for r in spin]
+    axes[-1].bar(labels, [r["total_ms"] - r["build_ms"] for r in spin],
+                 color=[colours.get(r["variant"]) for r in spin], label="the rest of the frame")
+    axes[-1].bar(labels, [r["build_ms"] for r in spin],
+                 bottom=[r["total_ms"] - r["build_ms"] for r in spin],
+                 color=[colours.get(r["variant"]) for r in spin], alpha=0.4, label="rebuild")
+    axes[-1].set(ylabel="ms per frame", title="the full bunny turning (light: rebuild)")
+    axes[-1].tick_params(axis="x", labelsize=6, rotation=45)
+    fig.suptitle(machine_line().replace("medians of frames after a warm-up",
+                                        "medians of frames 1.. of each sequence, rounds in turns"),
+                 fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
 
 SETS = {"paper": (bench_paper, chart_paper), "scaling": (bench_scaling, chart_scaling),
         "whitted": (bench_whitted, chart_whitted), "targets": (bench_targets, chart_targets),
-        "single": (bench_single, chart_single), "adaptive": (bench_adaptive, chart_adaptive)}
+        "single": (bench_single, chart_single), "adaptive": (bench_adaptive, chart_adaptive),
+        "dynamic": (bench_dynamic, chart_dynamic)}
 
 
 def main():
@@ -746,7 +863,7 @@ def main():
     p.add_argument("--frames", type=int, default=7, help="timed frames per figure (median), >= 5")
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
     p.add_argument("--rounds", type=int, default=TARGET_RUNS,
-                   help=f"targets, adaptive: rounds of every variant in turns (default {TARGET_RUNS}), >= 3")
+                   help=f"targets, adaptive, dynamic: rounds of every variant in turns (default {TARGET_RUNS}), >= 3")
     a = p.parse_args()
     if a.frames < 5:
         p.error("--frames must be at least 5")
@@ -755,7 +872,8 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     for name in (SETS if a.set == "all" else [a.set]):
         bench, chart = SETS[name]
-        rows = bench(a.frames, a.rounds) if name in ("targets", "adaptive") else bench(a.frames)
+        rounds_sets = ("targets", "adaptive", "dynamic")
+        rows = bench(a.frames, a.rounds) if name in rounds_sets else bench(a.frames)
         write_csv(os.path.join(a.out, f"{name}.csv"), rows)
         chart(rows, os.path.join(a.out, f"{name}.png"))
         print(f"wrote {a.out}/{name}.csv and {name}.png")

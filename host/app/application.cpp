@@ -7,10 +7,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "adaptive_grid.h"
+#include "animated_scene.h"
 #include "brute_intersector.h"
 #include "camera_rays.h"
 #include "choices_report.h"
@@ -19,6 +22,7 @@
 #include "dda_intersector.h"
 #include "default_scene.h"
 #include "errors.h"
+#include "frame_sequence.h"
 #include "frame_statistics.h"
 #include "gltf_loader.h"
 #include "gridrt_intersector.h"
@@ -91,13 +95,78 @@ auto during(const std::string& what, Step&& step) -> decltype(step()) {
 }
 
 // The built-in scene is not loaded through the glTF loader, so --camera is checked here.
-Scene loadScene(const Options& o) {
-  if (!o.scene.empty()) return loadGltfFile(o.scene, GltfLoadOptions{o.camera_name});
+Scene loadDefaultScene(const Options& o) {
   Scene scene = makeDefaultScene();
   if (!o.camera_name.empty() && o.camera_name != scene.camera.name && o.camera_name != "0")
     throw UsageError("--camera: the built-in default scene has no camera '" + o.camera_name +
                      "' (its only camera is 0 = '" + scene.camera.name + "')");
   return scene;
+}
+
+// One frame a run renders: its number (--frames), the time it is posed at (--time,
+// --frames; none: the still pose) and the files it writes.
+struct FrameJob {
+  long number = 0;
+  std::optional<double> time;
+  std::string output;
+  std::vector<std::pair<std::string, std::string>> aovs;
+};
+
+std::vector<FrameJob> frameJobs(const Options& o) {
+  if (!o.frames) return {FrameJob{0, o.time, o.output, o.aovs}};
+  const FramePattern output("-o", o.output);
+  std::vector<FramePattern> aovs;
+  for (const auto& aov : o.aovs) aovs.emplace_back("--aov " + aov.first, aov.second);
+  std::vector<FrameJob> jobs;
+  for (long f = o.frames->first; f <= o.frames->last; ++f) {
+    FrameJob job{f, frameTime(f, o.fps), output.path(f), {}};
+    for (size_t a = 0; a < aovs.size(); ++a)
+      job.aovs.emplace_back(o.aovs[a].first, aovs[a].path(f));
+    jobs.push_back(std::move(job));
+  }
+  return jobs;
+}
+
+// Where the frames come from: a fixed scene (the built-in one, or a file in its still
+// pose), or a glTF document with its animations, posed for each frame.
+struct SceneSource {
+  std::optional<AnimatedScene> animated;
+  std::vector<std::string> warnings;  // about the animation, said once
+};
+
+// Loads the scene and poses it for the first frame. Animations are read (and checked)
+// only when a time is asked for; the still pose is as written.
+SceneSource loadScene(const Options& o, const FrameJob& first, Scene& first_scene) {
+  SceneSource source;
+  const bool posed = first.time.has_value();
+  if (o.scene.empty()) {
+    if (!o.animation.empty())
+      throw UsageError("--animation '" + o.animation + "': the built-in scene has no animations");
+    first_scene = loadDefaultScene(o);
+    if (posed)
+      source.warnings.push_back(
+          "the built-in scene has no animations: --time/--frames "
+          "render it as it is");
+    return source;
+  }
+  GltfDocument document = GltfDocument::fromFile(o.scene);
+  const size_t animations = document.model().animations.size();
+  if (!posed) {
+    if (animations > 0)
+      source.warnings.push_back("the scene has " + std::to_string(animations) +
+                                " animation(s); rendered in its still pose (--time or --frames "
+                                "poses it)");
+    first_scene = document.flatten(GltfLoadOptions{o.camera_name});
+    return source;
+  }
+  source.animated.emplace(std::move(document), GltfLoadOptions{o.camera_name}, o.animation);
+  for (const auto& w : source.animated->warnings()) source.warnings.push_back(w);
+  if (!source.animated->moves())
+    source.warnings.push_back(
+        "the scene has no animation channels: --time/--frames render its "
+        "still pose");
+  first_scene = source.animated->at(*first.time);
+  return source;
 }
 
 // --stats-json is written after the render: check its folder first, so that a typo does
@@ -116,8 +185,10 @@ void validateStatsPath(const std::string& path) {
     throw RenderError("cannot write '" + path + "': it is a directory");
 }
 
-Camera chooseCamera(const Options& o, const Scene& scene) {
-  Camera camera = scene.has_camera ? scene.camera : defaultCamera(sceneBounds(scene));
+// `framing`: the box a scene without a camera is framed on (an animated scene's still
+// pose, so that the camera stays put while the scene moves).
+Camera chooseCamera(const Options& o, const Scene& scene, const Bounds& framing) {
+  Camera camera = scene.has_camera ? scene.camera : defaultCamera(framing);
   if (o.eye) {
     // Moved and turned, the camera keeps its projection (an orthographic one stays so).
     Camera looked = lookAtCamera(*o.eye, *o.target, camera.yfov);
@@ -159,9 +230,9 @@ void writeCropped(const Options& o, const std::string& path, int channels, std::
     writeAov(path, o.width, o.height, channels, data);
 }
 
-void writeOutputs(const Options& o, const Frame& frame) {
-  writeCropped(o, o.output, 3, frame.film.rgb, OutputKind::Image);
-  for (const auto& aov : o.aovs) {
+void writeOutputs(const Options& o, const FrameJob& job, const Frame& frame) {
+  writeCropped(o, job.output, 3, frame.film.rgb, OutputKind::Image);
+  for (const auto& aov : job.aovs) {
     int channels = 1;
     std::vector<float> data = aovData(frame.aovs, aov.first, channels);
     // Outside a crop window nothing was hit: the documented miss value of ids and depth.
@@ -202,16 +273,16 @@ struct FrameTimings {
 };
 
 // Renders 1 + --repeat frames into `frame`. The first frame warms up (buffers, caches);
-// with --repeat, medians come from the rest. A progress bar runs across all frames.
+// with --repeat, medians come from the rest. progress(fraction) is told how far all of
+// them are.
 FrameTimings renderFrames(const Options& o, Renderer& renderer, Intersector& intersector,
-                          Frame& frame) {
+                          Frame& frame, const std::function<void(double)>& progress) {
   FrameTimings t;
-  ProgressBar bar(progressWanted(o.quiet), progressDelaySeconds());
   const int frames = o.repeat + 1;
   for (int f = 0; f < frames; ++f) {
     IntersectCounters before = intersector.counters();
     renderer.render(frame, [&](int done, int total) {
-      bar.update((f + double(done) / std::max(total, 1)) / frames);
+      progress((f + double(done) / std::max(total, 1)) / frames);
     });
     const IntersectCounters& after = intersector.counters();
     if (f == 0) {
@@ -223,7 +294,6 @@ FrameTimings renderFrames(const Options& o, Renderer& renderer, Intersector& int
     t.lists_ms.push_back(after.lists_ms - before.lists_ms);
     t.reduce_ms.push_back(after.reduce_ms - before.reduce_ms);
   }
-  bar.finish();
   return t;
 }
 
@@ -244,7 +314,7 @@ std::unique_ptr<Intersector> makeIntersector(const Options& o, ClRuntime& runtim
 }
 
 void printSummary(const Options& o, const Frame& frame, double median_frame,
-                  const std::string& accel) {
+                  const std::string& accel, const std::string& output) {
   uint64_t total_rays = frame.rays.total();
   std::string window;
   if (o.crop)
@@ -258,58 +328,30 @@ void printSummary(const Options& o, const Frame& frame, double median_frame,
                 (unsigned long long)frame.rays.primary, (unsigned long long)frame.rays.shadow,
                 (unsigned long long)(frame.rays.reflection + frame.rays.refraction), median_frame,
                 median_frame > 0 ? total_rays / (median_frame * 1e3) : 0.0, accel.c_str(),
-                o.output.c_str());
+                output.c_str());
   std::cerr << line;
 }
 
-}  // namespace
+// One frame job's render: what it made, and its statistics (the keys of --stats-json
+// that belong to a frame).
+struct FrameResult {
+  Frame frame;
+  FrameTimings timings;
+  nlohmann::json stats;
+  double setup_ms = 0;         // the intersector: kernels (built once a run) and scene upload
+  uint64_t split_batches = 0;  // batches of the first rendering split to fit the device
+  std::string accel;
+};
 
-// The image size: as given, or with no --width/--height (and no --crop, which is placed in
-// the given size) from the scene camera's aspectRatio at the default height.
-Options sizedForCamera(const Options& given, const Camera& camera) {
-  Options o = given;
-  if (!o.size_given && !o.crop && camera.aspect > 0.0f && std::isfinite(camera.aspect))
-    o.width = int(std::clamp(std::lround(double(o.height) * camera.aspect), 1L, 65536L));
-  return o;
-}
-
-int runApplication(const Options& given) {
-  const ThreadLimit thread_limit(given.threads);
-  if (given.list_devices) {
-    auto devices = listDevices();
-    if (devices.empty()) throw RenderError(missingDeviceMessage(1));
-    std::cout << formatDeviceTable(devices);
-    return 0;
-  }
-  // Fail on bad output paths and absurd sizes before spending time on anything.
-  validateOutputPath(given.output);
-  // A name the program chose replaces nothing the user did not ask it to.
-  if (!given.output_named && !given.force && std::filesystem::exists(given.output))
-    throw UsageError("'" + given.output + "' exists: replace it with --force, or name the " +
-                     "output with -o");
-  for (const auto& aov : given.aovs) validateOutputPath(aov.second, OutputKind::Aov);
-  validateStatsPath(given.stats_json);
-  checkImageFitsHost(given);
-
-  Stopwatch clock;
-  Scene scene = loadScene(given);
-  double load_ms = clock.ms();
-  if (!given.quiet) {
-    for (const auto& w : given.warnings) std::cerr << "gridrt: warning: " << w << '\n';
-    for (const auto& w : scene.warnings) std::cerr << "gridrt: warning: " << w << '\n';
-  }
-  Camera camera = chooseCamera(given, scene);
-  const Options o = sizedForCamera(given, camera);
-  if (o.width != given.width) checkImageFitsHost(o);
-
-  ClRuntime runtime(o.device);
-  if (!o.quiet)
-    std::cerr << "gridrt: device " << runtime.info().platform_index << ":"
-              << runtime.info().device_index << " " << runtime.info().name << '\n';
-  checkImageFitsDevice(o, runtime.info());
-
+// Prepares the scene's triangles, builds its grid and intersector (the runtime keeps the
+// programs it built, so only the first frame of a run compiles or loads them) and renders
+// 1 + --repeat frames. With report_choices, prints what was chosen first (-v).
+FrameResult renderScene(const Options& o, ClRuntime& runtime, const Scene& scene,
+                        const Camera& camera, const std::function<void(double)>& progress,
+                        bool report_choices) {
+  FrameResult result;
   std::vector<GrTriangle> triangles = prepareTriangles(scene, KernelOptions{o.watertight});
-  clock.restart();
+  Stopwatch clock;
   UniformGrid grid;
   bool uses_grid = o.accel == AccelKind::GridRt || o.accel == AccelKind::Dda;
   if (uses_grid) {
@@ -319,7 +361,7 @@ int runApplication(const Options& given) {
     grid = buildGrid(triangles, sceneBounds(scene), settings);
   }
   double build_ms = clock.ms();
-  if (o.verbose)
+  if (report_choices)
     for (const std::string& line :
          choicesReport(o, scene, camera, uses_grid ? &grid : nullptr, build_ms))
       std::cerr << "gridrt: " << line << '\n';
@@ -329,22 +371,17 @@ int runApplication(const Options& given) {
   std::unique_ptr<Intersector> intersector =
       during("building the kernels and uploading the scene",
              [&] { return makeIntersector(o, runtime, scene, triangles, grid, gridrt); });
-  double compile_ms = clock.ms();
+  result.setup_ms = clock.ms();
+  result.accel = intersector->name();
 
   Renderer renderer(scene, camera, *intersector, renderSettings(o));
-  Frame frame;
-  FrameTimings t =
-      during("rendering", [&] { return renderFrames(o, renderer, *intersector, frame); });
+  Frame& frame = result.frame;
+  result.timings =
+      during("rendering", [&] { return renderFrames(o, renderer, *intersector, frame, progress); });
+  const FrameTimings& t = result.timings;
 
-  writeOutputs(o, frame);
-
-  double median_frame = median(t.phases.frame_ms);
   uint64_t total_rays = frame.rays.total();
   nlohmann::json stats = frameStatistics(t.phases, frame.rays);
-  stats["device"] = runtime.info().name;
-  stats["device_compute_units"] = runtime.info().compute_units;
-  stats["host_threads"] = parallelSliceCount();
-  stats["scene"] = o.scene.empty() ? "(default scene)" : o.scene;
   stats["triangles"] = scene.triangleCount();
   stats["width"] = o.width;
   stats["height"] = o.height;
@@ -363,11 +400,7 @@ int runApplication(const Options& given) {
                    {"reflection", frame.rays.reflection},
                    {"refraction", frame.rays.refraction},
                    {"total", total_rays}};
-  stats["load_ms"] = load_ms;
   stats["build_ms"] = build_ms;
-  stats["compile_ms"] = compile_ms;
-  stats["programs"] = {{"loaded", runtime.programsLoaded()},
-                       {"compiled", runtime.programsCompiled()}};
   stats["lists_ms"] = median(t.lists_ms);
   stats["kernel_ms"] = median(t.kernel_ms);
   stats["reduce_ms"] = median(t.reduce_ms);
@@ -406,16 +439,139 @@ int runApplication(const Options& given) {
                           {"all_rays", gridrt->allInterrupt()},
                           {"skipped_pairs", c.skipped_pairs}};
   }
+  result.split_batches = c.split_batches;
+  result.stats = std::move(stats);
+  return result;
+}
+
+}  // namespace
+
+// The image size: as given, or with no --width/--height (and no --crop, which is placed in
+// the given size) from the scene camera's aspectRatio at the default height.
+Options sizedForCamera(const Options& given, const Camera& camera) {
+  Options o = given;
+  if (!o.size_given && !o.crop && camera.aspect > 0.0f && std::isfinite(camera.aspect))
+    o.width = int(std::clamp(std::lround(double(o.height) * camera.aspect), 1L, 65536L));
+  return o;
+}
+
+int runApplication(const Options& given) {
+  const ThreadLimit thread_limit(given.threads);
+  if (given.list_devices) {
+    auto devices = listDevices();
+    if (devices.empty()) throw RenderError(missingDeviceMessage(1));
+    std::cout << formatDeviceTable(devices);
+    return 0;
+  }
+  // Fail on bad output paths and absurd sizes before spending time on anything.
+  const std::vector<FrameJob> jobs = frameJobs(given);
+  for (const FrameJob& job : jobs) {
+    validateOutputPath(job.output);
+    // A name the program chose replaces nothing the user did not ask it to.
+    if (!given.output_named && !given.force && std::filesystem::exists(job.output))
+      throw UsageError("'" + job.output + "' exists: replace it with --force, or name the " +
+                       "output with -o");
+    for (const auto& aov : job.aovs) validateOutputPath(aov.second, OutputKind::Aov);
+  }
+  validateStatsPath(given.stats_json);
+  checkImageFitsHost(given);
+
+  Stopwatch clock;
+  Scene first_scene;
+  const SceneSource source = loadScene(given, jobs.front(), first_scene);
+  double load_ms = clock.ms();
+  if (!given.quiet) {
+    for (const auto& w : given.warnings) std::cerr << "gridrt: warning: " << w << '\n';
+    for (const auto& w : source.warnings) std::cerr << "gridrt: warning: " << w << '\n';
+    for (const auto& w : first_scene.warnings) std::cerr << "gridrt: warning: " << w << '\n';
+  }
+  // A scene without a camera is framed on its still pose, whatever the frame.
+  const Bounds framing =
+      first_scene.has_camera
+          ? Bounds{}
+          : sceneBounds(source.animated ? source.animated->still() : first_scene);
+  const Options o = sizedForCamera(given, chooseCamera(given, first_scene, framing));
+  if (o.width != given.width) checkImageFitsHost(o);
+
+  ClRuntime runtime(o.device);
+  if (!o.quiet)
+    std::cerr << "gridrt: device " << runtime.info().platform_index << ":"
+              << runtime.info().device_index << " " << runtime.info().name << '\n';
+  checkImageFitsDevice(o, runtime.info());
+
+  const bool sequence = given.time || given.frames;
+  ProgressBar bar(progressWanted(o.quiet), progressDelaySeconds());
+  FramePhaseTimes all_phases;  // every timed frame of every frame job
+  nlohmann::json stats, frames = nlohmann::json::array();
+  double compile_ms = 0;
+  uint64_t split_batches = 0;
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    const FrameJob& job = jobs[i];
+    clock.restart();
+    Stopwatch job_clock;
+    Scene posed;
+    if (i > 0 && source.animated) posed = source.animated->at(*job.time);
+    const Scene& scene = i > 0 && source.animated ? posed : first_scene;
+    const double pose_ms = i > 0 ? clock.ms() : load_ms;
+    const std::string note =
+        jobs.size() > 1 ? "frame " + std::to_string(i + 1) + " of " + std::to_string(jobs.size())
+                        : "";
+    FrameResult result = renderScene(
+        o, runtime, scene, chooseCamera(o, scene, framing),
+        [&](double fraction) { bar.update((double(i) + fraction) / double(jobs.size()), note); },
+        o.verbose && i == 0);
+    writeOutputs(o, job, result.frame);
+    all_phases.append(result.timings.phases);
+    if (i == 0) compile_ms = result.setup_ms;
+    split_batches += result.split_batches;
+    if (sequence) {
+      nlohmann::json entry = result.stats;
+      entry["frame"] = job.number;
+      entry["time"] = *job.time;
+      entry["output"] = job.output;
+      entry["pose_ms"] = pose_ms;
+      entry["setup_ms"] = result.setup_ms;
+      // The whole frame job: posing (the first's without loading), triangles, grid,
+      // intersector, rendering and writing its files.
+      entry["wall_ms"] = job_clock.ms();
+      frames.push_back(std::move(entry));
+    }
+    if (i + 1 == jobs.size()) {
+      bar.finish();
+      stats = std::move(result.stats);
+      // The top level: the medians over every timed frame of the run, the rest the last
+      // frame's.
+      stats.update(frameStatistics(all_phases, result.frame.rays));
+      stats["frames_timed"] = all_phases.frame_ms.size();
+      if (!o.quiet)
+        printSummary(o, result.frame, median(all_phases.frame_ms), result.accel,
+                     jobs.size() > 1
+                         ? o.output + " (frames " + std::to_string(jobs.front().number) + ".." +
+                               std::to_string(job.number) + ")"
+                         : job.output);
+    }
+  }
+  stats["device"] = runtime.info().name;
+  stats["device_compute_units"] = runtime.info().compute_units;
+  stats["host_threads"] = parallelSliceCount();
+  stats["scene"] = o.scene.empty() ? "(default scene)" : o.scene;
+  stats["load_ms"] = load_ms;
+  stats["compile_ms"] = compile_ms;
+  stats["programs"] = {{"loaded", runtime.programsLoaded()},
+                       {"compiled", runtime.programsCompiled()}};
+  if (sequence) {
+    stats["animation_fps"] = o.fps;  // --fps (not a rendering speed)
+    stats["frames"] = std::move(frames);
+  }
   // Peak memory: the process's resident set (on a CPU device it holds the device buffers
   // too) and the device buffers' own peak.
   struct rusage usage {};
   getrusage(RUSAGE_SELF, &usage);
   stats["memory"] = {{"peak_host_mib", double(usage.ru_maxrss) / 1024.0},
                      {"peak_device_buffers_mib", double(runtime.peakBufferBytes()) / 1048576.0},
-                     {"split_batches", c.split_batches}};
+                     {"split_batches", split_batches}};
   if (!o.stats_json.empty()) writeJsonFile(o.stats_json, stats);
   if (o.stats) std::cout << formatStatisticsTable(stats);
-  if (!o.quiet) printSummary(o, frame, median_frame, intersector->name());
   return 0;
 }
 

@@ -27,6 +27,18 @@ void FramePhaseTimes::add(const FrameTimes& times) {
   shadow_ms.push_back(times.shadow_ms);
 }
 
+void FramePhaseTimes::append(const FramePhaseTimes& other) {
+  auto join = [](std::vector<double>& to, const std::vector<double>& from) {
+    to.insert(to.end(), from.begin(), from.end());
+  };
+  join(frame_ms, other.frame_ms);
+  join(shade_ms, other.shade_ms);
+  join(intersect_ms, other.intersect_ms);
+  join(primary_ms, other.primary_ms);
+  join(secondary_ms, other.secondary_ms);
+  join(shadow_ms, other.shadow_ms);
+}
+
 nlohmann::json frameStatistics(const FramePhaseTimes& phases, const RayCounts& rays) {
   auto perRay = [](double ms, uint64_t count) { return count ? ms * 1e6 / double(count) : 0.0; };
   const double frame_ms = median(phases.frame_ms), primary_ms = median(phases.primary_ms),

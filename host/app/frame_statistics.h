@@ -31,6 +31,7 @@ MeanMax meanMax(const std::vector<T>& values) {
 struct FramePhaseTimes {
   std::vector<double> frame_ms, shade_ms, intersect_ms, primary_ms, secondary_ms, shadow_ms;
   void add(const FrameTimes& times);
+  void append(const FramePhaseTimes& other);  // other's frames after these
 };
 
 // The figures of a run's frames as gridrt's statistics and the Embree peer's name them,

@@ -126,7 +126,7 @@ void parseRayOffset(const std::string& text, RayOffset& offset) {
 
 struct RawOptions {
   std::string accel = "gridrt", grid = "auto", background, ray_offset = "robust", look_at;
-  std::string crop, crop_output = "full", intersector = "mt", aa = "uniform";
+  std::string crop, crop_output = "full", intersector = "mt", aa = "uniform", frames;
   std::vector<std::string> aovs;
   std::set<std::string> given;  // the options on the command line, e.g. "--spp"
 };
@@ -151,12 +151,35 @@ void checkCombinations(Options& o, const RawOptions& raw) {
         "resolution)");
   if (given("--crop-output") && !o.crop) throw UsageError("--crop-output: only with --crop");
   if (o.verbose && o.quiet) throw UsageError("--verbose and --quiet: choose one");
+  if (o.time && o.frames) throw UsageError("--time: not with --frames (which sets each frame's)");
+  if (given("--fps") && !o.frames) throw UsageError("--fps: only with --frames");
+  if (given("--animation") && !o.time && !o.frames)
+    throw UsageError("--animation: only with --time or --frames");
   const bool has_pes = o.accel == AccelKind::GridRt || o.accel == AccelKind::Dda;
   for (const auto& aov : o.aovs)
     if (!has_pes && (aov.first == "pe" || aov.first == "listlen"))
       throw UsageError("--aov " + aov.first +
                        ": only the grid intersectors (--accel gridrt, "
                        "dda) have PEs and traversal lists");
+}
+
+// With --frames every image path is a frame pattern (without -o, SCENE_%04d.png); without
+// it a path is taken as written, '%' and all, which is said when it looks like a pattern.
+void checkFramePatterns(Options& o) {
+  if (!o.frames) {
+    if (FramePattern::isPattern(o.output))
+      o.warnings.push_back("-o '" + o.output +
+                           "' looks like a frame pattern but there is no --frames: it is the "
+                           "file's name as written");
+    return;
+  }
+  if (!o.output_named) {
+    const std::filesystem::path derived(o.output);
+    o.output =
+        (derived.parent_path() / derived.stem()).string() + "_%04d" + derived.extension().string();
+  }
+  FramePattern("-o", o.output);
+  for (const auto& aov : o.aovs) FramePattern("--aov " + aov.first, aov.second);
 }
 
 // Two outputs on one path would leave only the last: refused.
@@ -271,6 +294,18 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
                  "offset kept in the data window)")
       ->capture_default_str()
       ->check(CLI::IsMember({"full", "window"}));
+  app.add_option("--time", o.time, "pose the scene's animations at T seconds")
+      ->type_name("T")
+      ->check(numberIn(0.0, 1e6));
+  app.add_option("--frames", raw.frames,
+                 "frames A..B at frame/--fps s into -o PATTERN (out_%04d.png; --aov too)")
+      ->type_name("A:B");
+  app.add_option("--fps", o.fps, "frames per second of --frames")
+      ->type_name("F")
+      ->capture_default_str()
+      ->check(numberIn(0.001, 1e6));
+  app.add_option("--animation", o.animation, "play only this glTF animation (default: all)")
+      ->type_name("NAME|INDEX");
   app.set_version_flag("--version", std::string("gridrt ") + GRIDRT_VERSION);
 }
 
@@ -305,6 +340,7 @@ void finish(Options& o, const RawOptions& raw) {
     if (*o.eye == *o.target) throw UsageError("--look-at: eye and target are the same point");
   }
   finishCrop(o, raw);
+  if (!raw.frames.empty()) o.frames = parseFrameRange(raw.frames);
   for (const auto& spec : raw.aovs) {
     size_t eq = spec.find('=');
     std::string name = eq == std::string::npos ? spec : spec.substr(0, eq);
@@ -318,6 +354,7 @@ void finish(Options& o, const RawOptions& raw) {
     o.aovs.emplace_back(name, spec.substr(eq + 1));
   }
   checkCombinations(o, raw);
+  checkFramePatterns(o);
   checkDistinctOutputs(o);
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "crop_window.h"
+#include "frame_sequence.h"
 #include "uniform_grid.h"
 #include "whitted_shading.h"
 
@@ -57,6 +58,13 @@ struct Options {
   std::optional<PixelWindow> crop;            // --crop: render only this window of the image
   CropOutput crop_output = CropOutput::Full;  // --crop-output full | window
   std::vector<std::string> warnings;          // options that have no effect, said once
+  // Animation (docs/animation.md): one time (--time), or frames first..last at
+  // frame / fps seconds (--frames, --fps) into -o and --aov paths that are frame patterns
+  // (frame_sequence.h); neither: the scene's still pose, as written.
+  std::optional<double> time;
+  std::optional<FrameRange> frames;
+  double fps = 24.0;
+  std::string animation;  // --animation NAME|INDEX: the one that plays (default all)
 };
 
 // Parses argv. Returns nullopt when --help or --version was handled (printed, exit 0).

@@ -53,21 +53,23 @@ double progressDelaySeconds() {
   return *end == '\0' && s >= 0.0 ? s : kProgressDelayS;
 }
 
-std::string formatProgressLine(double fraction, double elapsed_s, double remaining_s) {
+std::string formatProgressLine(double fraction, double elapsed_s, double remaining_s,
+                               const std::string& note) {
   fraction = std::clamp(fraction, 0.0, 1.0);
   int filled = int(fraction * kBarCells + 0.5);
   std::string bar(size_t(filled), '#');
   bar.append(size_t(kBarCells - filled), '.');
   char percent[8];
   std::snprintf(percent, sizeof percent, "%3d%%", int(fraction * 100.0 + 0.5));
-  return "gridrt: [" + bar + "] " + percent + "  " + formatSeconds(elapsed_s) + " elapsed, about " +
-         formatSeconds(std::max(0.0, remaining_s)) + " left";
+  return "gridrt: [" + bar + "] " + percent + "  " + (note.empty() ? "" : note + ", ") +
+         formatSeconds(elapsed_s) + " elapsed, about " + formatSeconds(std::max(0.0, remaining_s)) +
+         " left";
 }
 
 ProgressBar::ProgressBar(bool enabled, double delay_s)
     : enabled_(enabled), delay_ms_(delay_s * 1000.0) {}
 
-void ProgressBar::update(double fraction) {
+void ProgressBar::update(double fraction, const std::string& note) {
   if (!enabled_) return;
   double now = clock_.ms();
   if (now < delay_ms_ || now - last_draw_ms_ < kRedrawIntervalMs) return;
@@ -77,7 +79,8 @@ void ProgressBar::update(double fraction) {
   // pessimistic rather than optimistic.
   double remaining = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
   // "\033[K" erases what a longer previous line left to the right.
-  std::fprintf(stderr, "\r%s\033[K", formatProgressLine(fraction, elapsed, remaining).c_str());
+  std::fprintf(stderr, "\r%s\033[K",
+               formatProgressLine(fraction, elapsed, remaining, note).c_str());
   std::fflush(stderr);
   if (!drawn_) {
     struct sigaction ends_line {};

@@ -1,5 +1,6 @@
 // A one-line progress bar on stderr for renders that take a while:
 //   gridrt: [##########..........]  50%  1.2 s elapsed, about 1.2 s left
+// (with a frame sequence: "50%  frame 3 of 10, 1.2 s elapsed, ...").
 // Drawn only when stderr is a terminal and --quiet is off, and only once the render has
 // run for `delay_s` (quick renders print nothing but the closing summary). The line is
 // redrawn in place with '\r' and erased by finish(), so the summary line replaces it.
@@ -30,8 +31,9 @@ class ProgressBar {
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
 
-  // fraction in [0, 1] of the whole job done so far.
-  void update(double fraction);
+  // fraction in [0, 1] of the whole job done so far; `note` (e.g. "frame 3 of 10") is shown
+  // after the percentage.
+  void update(double fraction, const std::string& note = "");
   // Erases the bar if it was drawn. Safe to call more than once.
   void finish();
 
@@ -47,6 +49,7 @@ class ProgressBar {
 
 // The text of the bar (without '\r'), for a given fraction, elapsed and remaining seconds.
 // Separate from the drawing so that it can be tested.
-std::string formatProgressLine(double fraction, double elapsed_s, double remaining_s);
+std::string formatProgressLine(double fraction, double elapsed_s, double remaining_s,
+                               const std::string& note = "");
 
 }  // namespace gridrt

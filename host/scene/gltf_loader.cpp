@@ -553,8 +553,8 @@ Camera convertCamera(const tinygltf::Camera& c, const glm::dmat4& world, const s
 class SceneBuilder {
  public:
   SceneBuilder(const tinygltf::Model& model, const std::string& label,
-               const GltfLoadOptions& options)
-      : model_(model), label_(label), options_(options) {}
+               const GltfLoadOptions& options, const ScenePose* pose = nullptr)
+      : model_(model), label_(label), options_(options), pose_(pose) {}
 
   Scene build(std::vector<std::string> parse_warnings) {
     scene_.warnings = std::move(parse_warnings);
@@ -640,7 +640,7 @@ class SceneBuilder {
         fail(label_, nodeName(e.node) + ": reached twice (a node may have only one parent)");
       s = kOnPath;
       const tinygltf::Node& node = model_.nodes[size_t(e.node)];
-      const glm::dmat4 world = e.parent_world * localTransform(node, nodeName(e.node), label_);
+      const glm::dmat4 world = e.parent_world * posedLocalTransform(e.node, node);
       visits.push_back({e.node, world});
       world_of_node_[size_t(e.node)] = world;
       stack.push_back({e.node, glm::dmat4(1.0), true});
@@ -685,14 +685,45 @@ class SceneBuilder {
            nodeName(node_index) + ": mesh " + std::to_string(mesh_index) + " does not exist");
     const tinygltf::Mesh& mesh = model_.meshes[size_t(mesh_index)];
     const tinygltf::Node& node = model_.nodes[size_t(node_index)];
-    // The still pose's morph weights: the node's, else the mesh's, else zero.
-    const std::vector<double>& weights = node.weights.empty() ? mesh.weights : node.weights;
+    // The morph weights: the pose's, else the node's, else the mesh's, else zero.
+    const std::vector<double>& weights = posedMorphWeights(node_index, node, mesh);
     std::optional<std::vector<glm::dmat4>> joints;
     if (node.skin >= 0) joints = jointMatrices(node.skin, node_index);
     for (size_t p = 0; p < mesh.primitives.size(); ++p)
       addPrimitive(mesh.primitives[p],
                    named("mesh", size_t(mesh_index), mesh.name) + " primitive " + std::to_string(p),
                    world, weights, joints ? &*joints : nullptr);
+  }
+
+  // The pose's entry for node `index`, or null (the still pose).
+  const NodePose* poseOf(int index) const {
+    return pose_ && size_t(index) < pose_->size() ? &(*pose_)[size_t(index)] : nullptr;
+  }
+
+  // The node's local matrix with the pose's translation, rotation and scale in place of
+  // the file's where it sets them (through localTransform, as a file holding them would).
+  glm::dmat4 posedLocalTransform(int index, const tinygltf::Node& node) const {
+    const NodePose* pose = poseOf(index);
+    if (!pose || !pose->movesTransform()) return localTransform(node, nodeName(index), label_);
+    tinygltf::Node trs;
+    trs.translation =
+        pose->translation
+            ? std::vector<double>{pose->translation->x, pose->translation->y, pose->translation->z}
+            : node.translation;
+    trs.rotation = pose->rotation ? std::vector<double>{pose->rotation->x, pose->rotation->y,
+                                                        pose->rotation->z, pose->rotation->w}
+                                  : node.rotation;
+    trs.scale = pose->scale ? std::vector<double>{pose->scale->x, pose->scale->y, pose->scale->z}
+                            : node.scale;
+    return localTransform(trs, nodeName(index), label_);
+  }
+
+  // The morph weights of a node's mesh: the pose's, else the node's, else the mesh's.
+  const std::vector<double>& posedMorphWeights(int index, const tinygltf::Node& node,
+                                               const tinygltf::Mesh& mesh) const {
+    const NodePose* pose = poseOf(index);
+    if (pose && pose->weights) return *pose->weights;
+    return node.weights.empty() ? mesh.weights : node.weights;
   }
 
   // Per joint of skin `skin_index`: the joint node's world matrix times its inverse bind
@@ -992,6 +1023,7 @@ class SceneBuilder {
   const tinygltf::Model& model_;
   const std::string& label_;
   const GltfLoadOptions& options_;
+  const ScenePose* pose_;  // null: the still pose
   Scene scene_;
   std::vector<bool> has_normals_;  // per triangle: from a primitive with NORMAL
   std::vector<CameraNode> camera_nodes_;
@@ -1023,12 +1055,30 @@ std::vector<unsigned char> readSceneFile(const std::string& path) {
 
 Scene loadGltfFromMemory(const unsigned char* data, size_t size, const std::string& base_dir,
                          const std::string& label, const GltfLoadOptions& options) {
-  std::vector<std::string> warnings;
-  tinygltf::Model model = parseModel(data, size, base_dir, label, warnings);
-  return SceneBuilder(model, label, options).build(std::move(warnings));
+  return GltfDocument::fromMemory(data, size, base_dir, label).flatten(options);
 }
 
 Scene loadGltfFile(const std::string& path, const GltfLoadOptions& options) {
+  return GltfDocument::fromFile(path).flatten(options);
+}
+
+GltfDocument::GltfDocument(std::shared_ptr<const tinygltf::Model> model, std::string label,
+                           std::vector<std::string> warnings)
+    : model_(std::move(model)), label_(std::move(label)), parse_warnings_(std::move(warnings)) {}
+
+GltfDocument GltfDocument::fromMemory(const unsigned char* data, size_t size,
+                                      const std::string& base_dir, const std::string& label) {
+  std::vector<std::string> warnings;
+  auto model =
+      std::make_shared<const tinygltf::Model>(parseModel(data, size, base_dir, label, warnings));
+  return GltfDocument(std::move(model), label, std::move(warnings));
+}
+
+Scene GltfDocument::flatten(const GltfLoadOptions& options, const ScenePose* pose) const {
+  return SceneBuilder(*model_, label_, options, pose).build(parse_warnings_);
+}
+
+GltfDocument GltfDocument::fromFile(const std::string& path) {
   const std::vector<unsigned char> bytes = readSceneFile(path);
 
   // A .glb must carry the magic; anything else is sniffed by loadGltfFromMemory.
@@ -1041,7 +1091,7 @@ Scene loadGltfFile(const std::string& path, const GltfLoadOptions& options) {
   // External files live next to the scene ("." for a bare file name: empty would forbid them).
   fs::path base_dir = fs::path(path).parent_path();
   if (base_dir.empty()) base_dir = ".";
-  return loadGltfFromMemory(bytes.data(), bytes.size(), base_dir.string(), path, options);
+  return fromMemory(bytes.data(), bytes.size(), base_dir.string(), path);
 }
 
 }  // namespace gridrt

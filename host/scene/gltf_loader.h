@@ -26,6 +26,8 @@
 //   world matrix keeps the translation, with the rotation part orthonormalised (scale and
 //   shear removed) so that it is a pure camera-to-world rigid transform.
 // - Lights: KHR_lights_punctual on traversed nodes, in traversal order.
+// - Animation: GltfDocument::flatten takes a pose (node_pose.h) that replaces animated nodes'
+//   TRS and morph weights; skins, cameras and lights follow the posed nodes.
 // - Security: external files (buffers, images) must lie inside the scene's folder: absolute
 //   URIs, ".." components and symbolic links leading out are rejected; data URIs over
 //   256 MiB are rejected before decoding.
@@ -34,9 +36,16 @@
 // and the element, e.g. "scene.glb: accessor 3: index 912 out of range for 453 vertices".
 #pragma once
 #include <cstddef>
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "node_pose.h"
 #include "scene.h"
+
+namespace tinygltf {
+class Model;
+}
 
 namespace gridrt {
 
@@ -56,5 +65,29 @@ Scene loadGltfFile(const std::string& path, const GltfLoadOptions& options = {})
 // the data in messages (a file name, or e.g. "fuzz input").
 Scene loadGltfFromMemory(const unsigned char* data, size_t size, const std::string& base_dir,
                          const std::string& label, const GltfLoadOptions& options = {});
+
+// A glTF document parsed (and its files read) once, flattened into a Scene at any pose:
+// an animated scene's frames (gltf_animation.h samples the poses). Copies share the model.
+class GltfDocument {
+ public:
+  // As loadGltfFile and loadGltfFromMemory read them; every parse failure throws SceneError.
+  static GltfDocument fromFile(const std::string& path);
+  static GltfDocument fromMemory(const unsigned char* data, size_t size,
+                                 const std::string& base_dir, const std::string& label);
+  // The scene with `pose` (one entry per node) in place of the file's translation,
+  // rotation, scale and morph weights where it sets them; null: the still pose, as
+  // loadGltfFile gives it. The same document and pose give the same scene bit for bit as
+  // a file whose nodes hold the pose's values.
+  Scene flatten(const GltfLoadOptions& options = {}, const ScenePose* pose = nullptr) const;
+  const tinygltf::Model& model() const { return *model_; }
+  const std::string& label() const { return label_; }
+
+ private:
+  GltfDocument(std::shared_ptr<const tinygltf::Model> model, std::string label,
+               std::vector<std::string> warnings);
+  std::shared_ptr<const tinygltf::Model> model_;
+  std::string label_;
+  std::vector<std::string> parse_warnings_;  // tinygltf's, repeated in every flattened scene
+};
 
 }  // namespace gridrt

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "animated_scene.h"
 #include "errors.h"
 #include "gltf_loader.h"
 #include "options.h"
@@ -66,8 +67,15 @@ std::ostream& operator<<(std::ostream& out, Outcome o) {
 Outcome loadScene(const fs::path& file, std::string& what) {
   std::string bytes = readBytes(file);
   try {
-    gridrt::loadGltfFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(),
-                               "", file.filename().string());
+    // As tests/fuzz/fuzz_scene_loader.cpp does: the still pose, then the animations posed.
+    const gridrt::GltfDocument document =
+        gridrt::GltfDocument::fromMemory(reinterpret_cast<const unsigned char*>(bytes.data()),
+                                         bytes.size(), "", file.filename().string());
+    document.flatten();
+    if (!document.model().animations.empty()) {
+      const gridrt::AnimatedScene animated(document, {}, "");
+      for (double t : {-1.0, 0.0, 0.37, 1e9}) animated.at(t);
+    }
     return Outcome::Accepted;
   } catch (const gridrt::SceneError& e) {
     what = e.what();

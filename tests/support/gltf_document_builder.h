@@ -1,0 +1,138 @@
+// Small glTF documents written by tests: one buffer embedded as a base64 data URI, with a
+// buffer view and an accessor per array added, and nodes whose numbers are written with
+// 17 significant digits (read back as the same doubles).
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <glm/glm.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gridrt::test {
+
+constexpr int kGltfUnsignedByte = 5121, kGltfUnsignedShort = 5123, kGltfFloat = 5126;
+
+inline std::string base64(const std::string& bytes) {
+  static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    uint32_t v = uint32_t(uint8_t(bytes[i])) << 16 | uint32_t(uint8_t(bytes[i + 1])) << 8 |
+                 uint8_t(bytes[i + 2]);
+    for (int s = 18; s >= 0; s -= 6) out += kDigits[(v >> s) & 63];
+  }
+  if (i < bytes.size()) {
+    uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
+    if (i + 1 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 1])) << 8;
+    out += kDigits[(v >> 18) & 63];
+    out += kDigits[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? kDigits[(v >> 6) & 63] : '=';
+    out += '=';
+  }
+  return out;
+}
+
+template <typename T>
+std::string rawBytes(const std::vector<T>& values) {
+  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+// A number as JSON that reads back as the same double.
+inline std::string exactNumber(double v) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+inline std::string exactNumbers(const std::vector<double>& values) {
+  std::string out = "[";
+  for (size_t i = 0; i < values.size(); ++i) out += (i ? "," : "") + exactNumber(values[i]);
+  return out + "]";
+}
+
+// A node: `members` holds its other JSON members ("\"mesh\":0", "\"children\":[2]", ...).
+struct TestNode {
+  std::string members;
+  std::optional<glm::dvec3> translation;
+  std::optional<glm::dvec4> rotation;
+  std::optional<glm::dvec3> scale;
+  std::optional<std::vector<double>> weights;
+
+  std::string json() const {
+    std::string out = "{" + members;
+    auto add = [&](const char* key, const std::vector<double>& v) {
+      out += std::string(out.size() > 1 ? "," : "") + "\"" + key + "\":" + exactNumbers(v);
+    };
+    if (translation) add("translation", {translation->x, translation->y, translation->z});
+    if (rotation) add("rotation", {rotation->x, rotation->y, rotation->z, rotation->w});
+    if (scale) add("scale", {scale->x, scale->y, scale->z});
+    if (weights) add("weights", *weights);
+    return out + "}";
+  }
+};
+
+inline std::string nodesJson(const std::vector<TestNode>& nodes) {
+  std::string out = "\"nodes\":[";
+  for (size_t i = 0; i < nodes.size(); ++i) out += (i ? "," : "") + nodes[i].json();
+  return out + "]";
+}
+
+class GltfDocumentBuilder {
+ public:
+  // An accessor over a new buffer view of `bytes`; `extra`: further accessor members.
+  int addAccessor(const std::string& bytes, int component_type, size_t count,
+                  const std::string& type, const std::string& extra = "") {
+    const size_t view_offset = bin_.size();
+    bin_ += bytes;
+    bin_.resize((bin_.size() + 3) / 4 * 4, '\0');
+    views_.push_back("{\"buffer\":0,\"byteOffset\":" + std::to_string(view_offset) +
+                     ",\"byteLength\":" + std::to_string(bytes.size()) + "}");
+    accessors_.push_back("{\"bufferView\":" + std::to_string(views_.size() - 1) +
+                         ",\"componentType\":" + std::to_string(component_type) + ",\"count\":" +
+                         std::to_string(count) + ",\"type\":\"" + type + "\"" + extra + "}");
+    return int(accessors_.size() - 1);
+  }
+  // FLOAT accessors of `type` (SCALAR 1, VEC3 3, VEC4 4, MAT4 16 numbers an element).
+  int floats(const std::vector<float>& values, const std::string& type) {
+    const size_t per = type == "SCALAR" ? 1
+                       : type == "VEC2" ? 2
+                       : type == "VEC3" ? 3
+                       : type == "VEC4" ? 4
+                                        : 16;
+    std::string extra;
+    const bool finite =
+        std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); });
+    if (type == "SCALAR" && !values.empty() && finite) {  // animation inputs have min and max
+      const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+      extra = ",\"min\":[" + exactNumber(*lo) + "],\"max\":[" + exactNumber(*hi) + "]";
+    }
+    return addAccessor(rawBytes(values), kGltfFloat, values.size() / per, type, extra);
+  }
+  int bytes(const std::vector<uint8_t>& values, const std::string& type) {
+    return addAccessor(rawBytes(values), kGltfUnsignedByte, values.size() / 4, type);
+  }
+
+  // The document: `rest` holds the other top-level members without braces.
+  std::string json(const std::string& rest) const {
+    std::string doc = "{\"asset\":{\"version\":\"2.0\"}";
+    if (!bin_.empty())
+      doc += ",\"buffers\":[{\"byteLength\":" + std::to_string(bin_.size()) +
+             ",\"uri\":\"data:application/octet-stream;base64," + base64(bin_) + "\"}]" +
+             ",\"bufferViews\":[" + join(views_) + "],\"accessors\":[" + join(accessors_) + "]";
+    return doc + (rest.empty() ? "" : "," + rest) + "}";
+  }
+
+ private:
+  static std::string join(const std::vector<std::string>& items) {
+    std::string out;
+    for (const auto& s : items) out += (out.empty() ? "" : ",") + s;
+    return out;
+  }
+  std::string bin_;
+  std::vector<std::string> views_, accessors_;
+};
+
+}  // namespace gridrt::test
