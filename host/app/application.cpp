@@ -172,7 +172,7 @@ SceneSource loadScene(const Options& o, const FrameJob& first, Scene& first_scen
 // --stats-json is written after the render: check its folder first, so that a typo does
 // not cost a whole render (and leave an image without its statistics).
 void validateStatsPath(const std::string& path) {
-  if (path.empty()) return;
+  if (path.empty() || path == kStandardOutput) return;
   std::filesystem::path p(path), dir = p.parent_path().empty() ? "." : p.parent_path();
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec))

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include "errors.h"
@@ -92,6 +93,11 @@ std::string formatStatisticsTable(const nlohmann::json& stats) {
 }
 
 void writeJsonFile(const std::string& path, const nlohmann::json& stats) {
+  if (path == kStandardOutput) {
+    std::cout << stats.dump(2) << '\n' << std::flush;
+    if (!std::cout) throw RenderError("cannot write the statistics to standard output");
+    return;
+  }
   std::string temp = path + ".tmp" + std::to_string(::getpid());
   {
     std::ofstream out(temp);

@@ -43,6 +43,9 @@ nlohmann::json frameStatistics(const FramePhaseTimes& phases, const RayCounts& r
 std::string formatStatisticsTable(const nlohmann::json& stats);
 
 // Writes JSON to path through a temporary file (never half-written).
+// "-": standard output, as Unix tools take it.
+constexpr const char* kStandardOutput = "-";
+// Writes `stats` to `path` atomically (a temporary file renamed), or to standard output.
 void writeJsonFile(const std::string& path, const nlohmann::json& stats);
 
 }  // namespace gridrt

@@ -251,7 +251,8 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.add_option("--repeat", o.repeat, "render N more frames after the first, for timing")
       ->capture_default_str()
       ->check(integerIn(0, 100000));
-  app.add_option("--stats-json", o.stats_json, "write statistics as JSON to FILE");
+  app.add_option("--stats-json", o.stats_json,
+                 "write statistics as JSON to FILE (- for standard output)");
   app.add_flag("--stats", o.stats, "print a statistics table");
   app.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
   app.add_flag("-v,--verbose", o.verbose, "print what was chosen: camera, lights, grid, passes");

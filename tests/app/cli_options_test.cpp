@@ -292,6 +292,19 @@ TEST(BadInput, FieldOfViewOutsideItsRangeIsAUsageError) {
   }
 }
 
+// "--stats-json -" writes the statistics to standard output, and only them.
+TEST(StatisticsOutput, DashWritesTheJsonToStandardOutput) {
+  if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
+  CommandResult r = runCommand({gridrtBinary(), "-q", "--width", "8", "--height", "6", "-o",
+                                tempPath("stdout_stats.png"), "--stats-json", "-"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json stats = nlohmann::json::parse(r.out, nullptr, false);
+  ASSERT_FALSE(stats.is_discarded()) << r.out;
+  EXPECT_EQ(stats["width"], 8);
+  EXPECT_EQ(stats["rays"]["primary"], 48);
+  EXPECT_FALSE(std::ifstream("-").good()) << "no file named '-'";
+}
+
 TEST(BadInput, UnwritableStatisticsFileFailsTheRun) {
   if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
   const std::string json = tempPath("no_such_folder") + "/stats.json";
