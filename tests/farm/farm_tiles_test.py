@@ -1,10 +1,13 @@
 """A 4x4-tile frame rendered on two loopback workers is the single gridrt render, file for
-file (EXR and PNG); with the tiles handed out nearest the centre first as well."""
+file (EXR and PNG); with the tiles handed out nearest the centre first as well; and a
+.gltf whose buffer is a file beside it reaches the workers with that file."""
+import base64
+import json
 import os
 import tempfile
 import unittest
 
-from farm_support import GRIDRT, SIZE, LoopbackCluster, farm, image_bytes, run
+from farm_support import GRIDRT, SIZE, SOURCE, LoopbackCluster, farm, image_bytes, run
 
 
 class FarmTiles(unittest.TestCase):
@@ -19,19 +22,20 @@ class FarmTiles(unittest.TestCase):
     def setUp(self):
         self.folder = tempfile.mkdtemp(prefix="farm-tiles-")
 
-    def expect_farm_equals_single(self, name, extra, farm_extra=()):
+    def expect_farm_equals_single(self, name, extra, farm_extra=(), tiles="4x4"):
         single = os.path.join(self.folder, "single_" + name)
         farmed = os.path.join(self.folder, "farm_" + name)
         r = run([GRIDRT, *SIZE, *extra, "-q", "-o", single])
         self.assertEqual(r.returncode, 0, r.stderr)
-        r = run(farm(self.cluster, "--tiles", "4x4", *farm_extra, *SIZE, *extra, "-o", farmed))
+        r = run(farm(self.cluster, "--tiles", tiles, *farm_extra, *SIZE, *extra, "-o", farmed))
         self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertIn("16 tasks", r.stderr)
+        nx, ny = map(int, tiles.split("x"))
+        self.assertIn(f"{nx * ny} tasks", r.stderr)
         self.assertEqual(image_bytes(farmed), image_bytes(single),
                          f"the farm's {name} differs from gridrt's")
-        # Nothing is left beside the output but the two images.
-        self.assertEqual(sorted(os.listdir(self.folder)), sorted([os.path.basename(single),
-                                                                  os.path.basename(farmed)]))
+        # Nothing is left beside the output but the two images (and a scene made here).
+        left = {n for n in os.listdir(self.folder) if not n.startswith("scene")}
+        self.assertEqual(left, {os.path.basename(single), os.path.basename(farmed)})
 
     def test_exr_frame_is_the_single_render(self):
         self.expect_farm_equals_single("frame.exr", ["--spp", "2"])
@@ -42,6 +46,19 @@ class FarmTiles(unittest.TestCase):
     def test_adaptive_aa_tiles_nearest_the_centre_first(self):
         self.expect_farm_equals_single("adaptive.png", ["--aa", "adaptive", "--aa-samples", "3"],
                                        ["--tile-order", "centre"])
+
+    def test_a_gltf_whose_buffer_is_a_file_reaches_the_workers_with_it(self):
+        with open(os.path.join(SOURCE, "scenes", "default.gltf")) as f:
+            document = json.load(f)
+        (buffer,) = document["buffers"]
+        data = base64.b64decode(buffer["uri"].split(",", 1)[1])
+        with open(os.path.join(self.folder, "scene data.bin"), "wb") as f:
+            f.write(data)
+        buffer["uri"] = "scene%20data.bin"  # a URI: the space percent-encoded
+        scene = os.path.join(self.folder, "scene.gltf")
+        with open(scene, "w") as f:
+            json.dump(document, f)
+        self.expect_farm_equals_single("external.png", [scene], tiles="2x2")
 
 
 if __name__ == "__main__":
