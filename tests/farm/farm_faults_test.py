@@ -1,6 +1,7 @@
 """Faults on two loopback workers: a worker killed while it runs a tile loses nothing (the
-frame is still the single render); a scene gridrt cannot load ends the job with gridrt's
-own one-line error, its exit status, and nothing written."""
+frame is still the single render); a worker where gridrt fails has its tasks tried again
+on the other; a scene gridrt cannot load ends the job with gridrt's own one-line error,
+its exit status, and nothing written."""
 import os
 import tempfile
 import time
@@ -8,7 +9,8 @@ import unittest
 
 import psutil
 
-from farm_support import (GRIDRT, RUN_SECONDS, SIZE, LoopbackCluster, farm, image_bytes, run)
+from farm_support import (BROKEN_HERE, GRIDRT, RUN_SECONDS, SIZE, LoopbackCluster, farm,
+                          image_bytes, run)
 import subprocess
 
 POLL_SECONDS = 0.005  # how often the test looks for a gridrt under the worker
@@ -46,6 +48,27 @@ class FarmFaults(unittest.TestCase):
         self.assertEqual(job.returncode, 0, err)
         self.assertIn("1 workers lost", err)
         self.assertEqual(image_bytes(farmed), image_bytes(single))
+
+    def test_tasks_gridrt_fails_on_one_worker_are_rendered_on_the_other(self):
+        self.cluster.close()
+        self.cluster = LoopbackCluster(workers=2, worker_env=[{"FARM_BROKEN_WORKER": "1"}, {}])
+        self.addCleanup(self.cluster.close)
+        single = os.path.join(self.folder, "single.png")
+        farmed = os.path.join(self.folder, "farm.png")
+        r = run([GRIDRT, *SIZE, "-q", "-o", single])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = run(farm(self.cluster, "--tiles", "4x4", *SIZE, "-o", farmed, gridrt=BROKEN_HERE))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        retried = int(r.stderr.split(" retried")[0].rsplit("(", 1)[1])
+        self.assertGreater(retried, 0, r.stderr)  # the broken worker took some tasks first
+        self.assertEqual(image_bytes(farmed), image_bytes(single))
+        # With no second try allowed, the broken worker's failure ends the job in its words.
+        os.remove(farmed)
+        r = run(farm(self.cluster, "--tiles", "4x4", "--retries", "0", *SIZE, "-o", farmed,
+                     gridrt=BROKEN_HERE))
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertEqual(r.stderr, "gridrt: no OpenCL platform found (the test's broken worker)\n")
+        self.assertEqual(sorted(os.listdir(self.folder)), ["single.png"])
 
     def test_a_bad_scene_fails_with_gridrts_error_and_writes_nothing(self):
         scene = os.path.join(self.folder, "broken.gltf")

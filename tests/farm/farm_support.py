@@ -15,6 +15,7 @@ MERGE_TILES = os.environ.get("GRIDRT_MERGE_TILES",
                              os.path.join(os.path.dirname(GRIDRT), "tools", "merge_tiles"))
 FARM = os.path.join(SOURCE, "tools", "gridrt-farm")
 STAND_IN = os.path.join(HERE, "anim_stand_in.py")
+BROKEN_HERE = os.path.join(HERE, "broken_here_gridrt.py")
 PYTHON = sys.executable
 
 RUN_SECONDS = 180       # the longest any one command of a test may take
@@ -43,8 +44,9 @@ class LoopbackCluster:
     dead) on 127.0.0.1, each in its own process group; close() ends them, and they end by
     themselves after SCHEDULER_IDLE / WORKER_ORPHAN if a test dies first."""
 
-    def __init__(self, workers=2, env=None):
+    def __init__(self, workers=2, env=None, worker_env=None):
         self.env = dict(os.environ, **(env or {}))
+        worker_env = worker_env or [{}] * workers
         self.folder = tempfile.mkdtemp(prefix="farm-cluster-")
         self.scheduler_file = os.path.join(self.folder, "scheduler.json")
         self.processes = []
@@ -57,14 +59,14 @@ class LoopbackCluster:
             [PYTHON, "-m", "distributed.cli.dask_worker", "--scheduler-file", self.scheduler_file,
              "--nthreads", "1", "--no-nanny", "--no-dashboard", "--host", "127.0.0.1",
              "--death-timeout", WORKER_ORPHAN,
-             "--local-directory", os.path.join(self.folder, f"worker{k}")], f"worker{k}")
-            for k in range(workers)]
+             "--local-directory", os.path.join(self.folder, f"worker{k}")], f"worker{k}",
+            worker_env[k]) for k in range(workers)]
         self._wait_for_workers(workers)
 
-    def _start(self, argv, name):
+    def _start(self, argv, name, extra_env=None):
         log = open(os.path.join(self.folder, name + ".log"), "w")
         p = subprocess.Popen(argv, stdout=log, stderr=subprocess.STDOUT, start_new_session=True,
-                             env=self.env)
+                             env=dict(self.env, **(extra_env or {})))
         self.processes.append(p)
         return p
 
