@@ -54,16 +54,18 @@ def parser():
         usage="gridrt-farm [--scheduler tcp://HOST:PORT] [--tiles NXxNY] [--frames A:B] "
               "[--gridrt PATH] [SCENE] -o OUT [gridrt options...]",
         description="Renders a gridrt job's tiles and frames on a Dask cluster and merges "
-                    "each frame into OUT, bit for bit what one gridrt process writes.")
-    p.add_argument("--scheduler", help="the Dask scheduler, tcp://HOST:PORT; without it a "
+                    "each frame into OUT, bit for bit what one gridrt process writes.",
+        epilog="Every other option goes to gridrt on every task (gridrt --help); the farm "
+               "sets --crop, --crop-output, --width, --height and -q itself. docs/farm.md.")
+    p.add_argument("--scheduler", metavar="tcp://HOST:PORT", help="the Dask scheduler, tcp://HOST:PORT; without it a "
                    "local cluster of --workers processes is started on this machine")
-    p.add_argument("--workers", type=int, default=2,
+    p.add_argument("--workers", type=int, default=2, metavar="N",
                    help="local cluster: worker processes (default 2)")
-    p.add_argument("--tiles", type=parse_tiles, default=None,
+    p.add_argument("--tiles", type=parse_tiles, default=None, metavar="NXxNY",
                    help="tiles of each frame, NXxNY (default 4x4 for one frame, 1x1 with --frames)")
-    p.add_argument("--frames", type=parse_frames, default=None,
+    p.add_argument("--frames", type=parse_frames, default=None, metavar="A:B",
                    help="frames A:B of an animation (gridrt --frames); OUT a printf pattern")
-    p.add_argument("--gridrt", help="the gridrt the workers run (default: the build's "
+    p.add_argument("--gridrt", metavar="PATH", help="the gridrt the workers run (default: the build's "
                    "build/gridrt beside this tool)")
     p.add_argument("--merge-tiles", metavar="PATH", help="the merge_tiles that merges the "
                    "frames here (default: tools/merge_tiles of gridrt's build)")
@@ -74,13 +76,13 @@ def parser():
                    help="keep the frames already written and render only the missing ones")
     p.add_argument("--tile-order", choices=["raster", "centre"], default="raster",
                    help="raster (rows from the top) or centre (nearest the centre first)")
-    p.add_argument("--retries", type=int, default=2,
+    p.add_argument("--retries", type=int, default=2, metavar="N",
                    help="a task gridrt fails is tried again on another worker this many "
                    "times at most (default 2)")
     p.add_argument("--wait-for-workers", type=float, default=60.0, metavar="SECONDS",
                    help="how long the job waits while no worker is alive (default 60)")
     p.add_argument("--farm-stats", metavar="FILE", help="write the job's statistics as JSON")
-    p.add_argument("-o", "--output", required=True, help="output image, or a printf pattern "
+    p.add_argument("-o", "--output", required=True, metavar="OUT", help="output image, or a printf pattern "
                    "(out_%%04d.png) with --frames")
     return p
 
