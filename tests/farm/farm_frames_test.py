@@ -1,16 +1,54 @@
 """Sequences on two loopback workers: an 8-frame job (gridrt --frames K:K per task) is the
 8 single renders, file for file, and --resume renders only the frames that are missing.
 They run against tests/farm/anim_stand_in.py, which gives gridrt's animation interface
-(--frames, --fps, a printf -o) eight different cameras; the first test also runs against
-gridrt itself once gridrt has --frames."""
+(--frames, --fps, a printf -o) eight different cameras, and, where gridrt has --frames,
+against gridrt itself on the default scene with its camera animated."""
+import base64
+import json
 import os
+import struct
 import tempfile
 import unittest
 
-from farm_support import (GRIDRT, SIZE, STAND_IN, LoopbackCluster, farm, image_bytes,
-                          gridrt_has_frames, run)
+from farm_support import (GRIDRT, SIZE, SOURCE, STAND_IN, LoopbackCluster, farm,
+                          gridrt_has_frames, image_bytes, run)
 
 FRAMES = 8
+FPS = 8  # the animated scene's eight frames span its one-second animation
+CAMERA_PATH = [(-0.3, 1.0, 2.0), (0.3, 1.0, 2.0)]  # the camera's translation at 0 s and 1 s
+
+
+def animated_default_scene(folder):
+    """scenes/default.gltf with its camera node moving along CAMERA_PATH in one second
+    (LINEAR), written to FOLDER/animated.gltf."""
+    with open(os.path.join(SOURCE, "scenes", "default.gltf")) as f:
+        doc = json.load(f)
+    (buffer,) = doc["buffers"]
+    data = bytearray(base64.b64decode(buffer["uri"].split(",", 1)[1]))
+    data += b"\0" * (-len(data) % 4)
+    times_at, data = len(data), data + struct.pack("<2f", 0.0, 1.0)
+    path_at = len(data)
+    data += struct.pack("<6f", *CAMERA_PATH[0], *CAMERA_PATH[1])
+    buffer.update(uri="data:application/octet-stream;base64," + base64.b64encode(data).decode(),
+                  byteLength=len(data))
+    views, accessors = doc["bufferViews"], doc["accessors"]
+    views += [{"buffer": 0, "byteOffset": times_at, "byteLength": 8},
+              {"buffer": 0, "byteOffset": path_at, "byteLength": 24}]
+    accessors += [{"bufferView": len(views) - 2, "componentType": 5126, "count": 2,
+                   "type": "SCALAR", "min": [0.0], "max": [1.0]},
+                  {"bufferView": len(views) - 1, "componentType": 5126, "count": 2,
+                   "type": "VEC3"}]
+    camera = next(k for k, n in enumerate(doc["nodes"]) if "camera" in n)
+    matrix = doc["nodes"][camera].pop("matrix")  # an animated node takes TRS, not a matrix
+    assert matrix == [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 2, 1], matrix  # a translation
+    doc["nodes"][camera]["translation"] = [0.0, 1.0, 2.0]
+    doc["animations"] = [{"name": "dolly", "samplers": [
+        {"input": len(accessors) - 2, "output": len(accessors) - 1, "interpolation": "LINEAR"}],
+        "channels": [{"sampler": 0, "target": {"node": camera, "path": "translation"}}]}]
+    path = os.path.join(folder, "animated.gltf")
+    with open(path, "w") as f:
+        json.dump(doc, f)
+    return path
 
 
 class FarmFrames(unittest.TestCase):
@@ -29,17 +67,18 @@ class FarmFrames(unittest.TestCase):
         if os.path.exists(self.log):
             os.remove(self.log)
 
-    def references(self, gridrt, frames, pattern):
+    def references(self, gridrt, scene, frames, pattern):
         for k in frames:
-            r = run([gridrt, *SIZE, "--frames", f"{k}:{k}", "--fps", "24", "-q", "-o", pattern])
+            r = run([gridrt, *scene, *SIZE, "--frames", f"{k}:{k}", "--fps", str(FPS), "-q",
+                     "-o", pattern])
             self.assertEqual(r.returncode, 0, r.stderr)
 
-    def expect_sequence(self, gridrt, tiles):
+    def expect_sequence(self, gridrt, tiles, scene=()):
         ref = os.path.join(self.folder, "ref_%04d.png")
         out = os.path.join(self.folder, "out_%04d.png")
-        self.references(gridrt, range(FRAMES), ref)
-        r = run(farm(self.cluster, "--frames", f"0:{FRAMES - 1}", "--tiles", tiles, *SIZE,
-                     "--fps", "24", "-o", out, gridrt=gridrt))
+        self.references(gridrt, scene, range(FRAMES), ref)
+        r = run(farm(self.cluster, *scene, "--frames", f"0:{FRAMES - 1}", "--tiles", tiles,
+                     *SIZE, "--fps", str(FPS), "-o", out, gridrt=gridrt))
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn(f"{FRAMES} frame(s) written", r.stderr)
         images = [image_bytes(out % k) for k in range(FRAMES)]
@@ -56,7 +95,7 @@ class FarmFrames(unittest.TestCase):
     def test_eight_frames_of_gridrts_own_animation(self):
         if not gridrt_has_frames():
             self.skipTest("gridrt has no --frames yet")
-        self.expect_sequence(GRIDRT, "2x1")
+        self.expect_sequence(GRIDRT, "2x1", [animated_default_scene(self.folder)])
 
     def test_resume_renders_only_the_missing_frames(self):
         out = os.path.join(self.folder, "seq_%04d.exr")
