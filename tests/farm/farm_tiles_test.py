@@ -1,15 +1,20 @@
 """A 4x4-tile frame rendered on two loopback workers is the single gridrt render, file for
 file (EXR and PNG); with the tiles handed out nearest the centre first as well; a .gltf
 whose buffer is a file beside it reaches the workers with that file; and --shared-scene
-renders from the path itself, sending nothing."""
+renders from the path itself, sending nothing. On a terminal the job shows its progress.
+"""
 import base64
 import json
 import os
+import pty
+import re
+import subprocess
 import sys
 import tempfile
 import unittest
 
-from farm_support import GRIDRT, SIZE, SOURCE, LoopbackCluster, farm, image_bytes, run
+from farm_support import (GRIDRT, RUN_SECONDS, SIZE, SOURCE, LoopbackCluster, farm,
+                          image_bytes, run)
 
 sys.path.insert(0, os.path.join(SOURCE, "tools"))
 from gridrt_farm.scene_bundle import SceneBundle  # noqa: E402
@@ -84,6 +89,33 @@ class FarmTiles(unittest.TestCase):
         scene = self.gltf_with_its_buffer_in_a_file("shared")
         self.expect_farm_equals_single("shared.png", [scene], ["--shared-scene"], tiles="2x2")
         self.assertFalse(self.kept_on_workers(scene))
+
+    def test_a_terminal_sees_the_progress_bar_and_a_pipe_only_the_summary(self):
+        out = os.path.join(self.folder, "bar.png")
+        main, terminal = pty.openpty()
+        job = subprocess.Popen(farm(self.cluster, "--tiles", "4x4", *SIZE, "-o", out),
+                               stdout=subprocess.DEVNULL, stderr=terminal)
+        os.close(terminal)
+        shown = b""
+        while True:
+            try:
+                chunk = os.read(main, 4096)
+            except OSError:  # the terminal's other end closed: the job is done
+                break
+            if not chunk:
+                break
+            shown += chunk
+        os.close(main)
+        self.assertEqual(job.wait(timeout=RUN_SECONDS), 0, shown)
+        text = shown.decode()
+        self.assertIn("[" + "#" * 24 + "] tasks 16/16, frames 1/1, 2 workers", text)
+        self.assertRegex(text, r"tasks [0-9]+/16, frames 0/1, 2 workers, ")
+        last = re.split(r"[\r\n]+", text.strip())[-1]  # the bar erased, then the summary
+        self.assertTrue(last.startswith("\033[Kgridrt-farm: 1 frame(s) written, 16 tasks"), last)
+        piped = run(farm(self.cluster, "--tiles", "2x2", *SIZE, "-o", out))
+        self.assertEqual(piped.returncode, 0, piped.stderr)
+        self.assertEqual(len(piped.stderr.splitlines()), 1, piped.stderr)
+        self.assertNotIn("tasks 4/4", piped.stderr)
 
 
 if __name__ == "__main__":
