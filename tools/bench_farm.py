@@ -5,7 +5,7 @@ machine. Three measurements, each the median of `rounds` rounds:
   cache, a window, the file) against gridrt's own frame time in it, and Dask's share
   (the job's time per task minus the worker's);
 - throughput against the number of workers: one frame (the default scene, 1280x960,
-  --spp 16) as 4x4 tiles on 1..4 local workers, against one gridrt process alone;
+  --spp 16) as 4x4 tiles on 1, 2 and 4 local workers, against one gridrt process alone;
 - the model of the speed-up on N machines (docs/farm.md) from those figures:
   T(N) = ceil(tasks / N) * (task overhead + frame / tasks) + merge, against the frame alone.
 """
@@ -23,7 +23,7 @@ GRIDRT = os.path.join(ROOT, "build", "gridrt")
 OVERHEAD_JOB = ["--width", "64", "--height", "48", "--tiles", "8x8"]
 THROUGHPUT_FRAME = ["--width", "1280", "--height", "960", "--spp", "16"]
 THROUGHPUT_TILES = "4x4"
-WORKER_COUNTS = [1, 2, 3, 4]
+WORKER_COUNTS = [1, 2, 4]
 MODEL_MACHINES = [1, 2, 4, 8, 16, 32, 64]
 
 
