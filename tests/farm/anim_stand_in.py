@@ -2,7 +2,9 @@
 """A stand-in for gridrt's animation interface (--frames K:K, --fps F, -o PATTERN) while
 gridrt has none: frame K is the built-in scene seen with a field of view of 30 + 5K
 degrees, rendered by the real gridrt (GRIDRT_BINARY, else build/gridrt) to PATTERN % K. Each frame it renders
-is appended to $FARM_STAND_IN_LOG, so a test can tell which frames a job rendered."""
+is appended to $FARM_STAND_IN_LOG, so a test can tell which frames a job rendered; the
+frame number written in the file $FARM_STAND_IN_BROKEN (when it exists) fails, as a
+gridrt error does (one line, exit 1)."""
 import os
 import re
 import sys
@@ -29,6 +31,13 @@ def main(argv):
             k += 1
     if frame is None or out is None:
         sys.exit("anim_stand_in: needs --frames K:K and -o PATTERN")
+    broken = os.environ.get("FARM_STAND_IN_BROKEN")
+    if broken and os.path.exists(broken):
+        with open(broken) as f:
+            if int(f.read()) == frame:
+                print(f"gridrt: frame {frame} cannot be rendered (the test's broken frame)",
+                      file=sys.stderr)
+                sys.exit(1)
     log = os.environ.get("FARM_STAND_IN_LOG")
     if log:
         with open(log, "a") as f:

@@ -55,8 +55,11 @@ class FarmFrames(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         # The stand-in runs on the workers: they are told where it logs when they start.
-        cls.log = os.path.join(tempfile.mkdtemp(prefix="farm-frames-log-"), "frames.log")
-        cls.cluster = LoopbackCluster(workers=2, env={"FARM_STAND_IN_LOG": cls.log})
+        control = tempfile.mkdtemp(prefix="farm-frames-control-")
+        cls.log = os.path.join(control, "frames.log")
+        cls.broken = os.path.join(control, "broken_frame")
+        cls.cluster = LoopbackCluster(workers=2, env={"FARM_STAND_IN_LOG": cls.log,
+                                                      "FARM_STAND_IN_BROKEN": cls.broken})
 
     @classmethod
     def tearDownClass(cls):
@@ -64,8 +67,9 @@ class FarmFrames(unittest.TestCase):
 
     def setUp(self):
         self.folder = tempfile.mkdtemp(prefix="farm-frames-")
-        if os.path.exists(self.log):
-            os.remove(self.log)
+        for path in (self.log, self.broken):
+            if os.path.exists(path):
+                os.remove(path)
 
     def references(self, gridrt, scene, frames, pattern):
         for k in frames:
@@ -116,6 +120,37 @@ class FarmFrames(unittest.TestCase):
             self.assertEqual(image_bytes(out % k), first[k], f"frame {k}")
         for k, inode in kept.items():
             self.assertEqual(os.stat(out % k).st_ino, inode, f"frame {k} was written again")
+
+    def test_a_failed_sequence_keeps_its_finished_frames_and_resume_completes_it(self):
+        last = 5
+        ref = os.path.join(self.folder, "ref_%04d.png")
+        out = os.path.join(self.folder, "out_%04d.png")
+        self.references(STAND_IN, (), range(last + 1), ref)
+        with open(self.broken, "w") as f:
+            f.write(str(last))
+        job = farm(self.cluster, "--frames", f"0:{last}", *SIZE, "-o", out, gridrt=STAND_IN)
+        r = run(job)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertEqual(r.stderr, f"gridrt: frame {last} cannot be rendered (the test's "
+                                   "broken frame)\n")
+        written = sorted(n for n in os.listdir(self.folder) if n.startswith("out_"))
+        self.assertNotIn(os.path.basename(out % last), written)
+        # Frames go out in order, one task at a time per worker, so the broken last frame's
+        # second failure comes after the others have finished.
+        self.assertTrue(written, "no finished frame was kept")
+        for name in written:  # each a whole frame: nothing partial, no tiles left
+            self.assertEqual(image_bytes(os.path.join(self.folder, name)),
+                             image_bytes(os.path.join(self.folder, name.replace("out", "ref"))))
+        self.assertFalse([n for n in os.listdir(self.folder) if n.startswith(".")])
+        missing = [k for k in range(last + 1) if not os.path.exists(out % k)]
+        os.remove(self.broken)
+        os.remove(self.log)
+        r = run(job + ["--resume"])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(self.log) as f:
+            self.assertEqual(sorted(int(line) for line in f), missing)
+        for k in range(last + 1):
+            self.assertEqual(image_bytes(out % k), image_bytes(ref % k), f"frame {k}")
 
 
 if __name__ == "__main__":
