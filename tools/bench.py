@@ -13,6 +13,7 @@ their own columns (load_ms, compile_ms, build_ms).
     .venv/bin/python tools/bench.py single    # one render per process: wall time, peak memory
     .venv/bin/python tools/bench.py adaptive  # uneven scenes: uniform grid, adaptive, Embree, in turns
     .venv/bin/python tools/bench.py dynamic   # moving scenes: rebuild + render per frame, gridrt and Embree
+    .venv/bin/python tools/bench.py farm      # tools/gridrt-farm: task cost, workers, the model
     .venv/bin/python tools/bench.py all
 """
 import argparse
@@ -24,6 +25,8 @@ import statistics
 import subprocess
 import sys
 import tempfile
+
+from bench_farm import bench_farm, chart_farm
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODELS = os.path.join(ROOT, "scenes", "models")
@@ -854,7 +857,8 @@ def chart_dynamic(rows, path):
 SETS = {"paper": (bench_paper, chart_paper), "scaling": (bench_scaling, chart_scaling),
         "whitted": (bench_whitted, chart_whitted), "targets": (bench_targets, chart_targets),
         "single": (bench_single, chart_single), "adaptive": (bench_adaptive, chart_adaptive),
-        "dynamic": (bench_dynamic, chart_dynamic)}
+        "dynamic": (bench_dynamic, chart_dynamic),
+        "farm": (bench_farm, chart_farm)}
 
 
 def main():
@@ -863,7 +867,7 @@ def main():
     p.add_argument("--frames", type=int, default=7, help="timed frames per figure (median), >= 5")
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
     p.add_argument("--rounds", type=int, default=TARGET_RUNS,
-                   help=f"targets, adaptive, dynamic: rounds of every variant in turns (default {TARGET_RUNS}), >= 3")
+                   help=f"targets, adaptive, dynamic, farm: rounds of every variant in turns (default {TARGET_RUNS}), >= 3")
     a = p.parse_args()
     if a.frames < 5:
         p.error("--frames must be at least 5")
@@ -872,7 +876,7 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     for name in (SETS if a.set == "all" else [a.set]):
         bench, chart = SETS[name]
-        rounds_sets = ("targets", "adaptive", "dynamic")
+        rounds_sets = ("targets", "adaptive", "dynamic", "farm")
         rows = bench(a.frames, a.rounds) if name in rounds_sets else bench(a.frames)
         write_csv(os.path.join(a.out, f"{name}.csv"), rows)
         chart(rows, os.path.join(a.out, f"{name}.png"))

@@ -5,7 +5,10 @@
 // tags), so tiles can be given in any order. The tiles must agree on the full size and
 // the channel count and must not overlap; pixels no tile covers are zero (with a warning).
 // Values are copied as 32-bit floats, so merging is exact: the merged image equals a
-// single full render bit for bit (tests/image/tiles_test.cpp).
+// single full render bit for bit (tests/image/tiles_test.cpp). An OUT of .png, .jpg or
+// .jpeg (three-channel tiles of a whole image) is encoded once, after the merge, by
+// gridrt's own image writer, so it equals gridrt's 8-bit file too: encoding tiles first
+// and pasting bytes would need a second encoder that must round exactly as gridrt does.
 //
 // Exit codes: 0 success, 2 usage, 1 unreadable, inconsistent or overlapping tiles.
 #include <OpenImageIO/imagebuf.h>
@@ -19,6 +22,10 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "errors.h"
+#include "film.h"
+#include "image_output.h"
 
 namespace {
 
@@ -117,10 +124,41 @@ void writeMerged(const std::string& path, const OIIO::ImageBuf& buf) {
   if (ec) throw MergeError("cannot write '" + path + "': " + ec.message());
 }
 
-bool isFloatFormat(const std::string& path) {
+std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+bool isFloatFormat(const std::string& path) {
+  const std::string ext = lowerExtension(path);
   return ext == ".exr" || ext == ".tif" || ext == ".tiff";
+}
+
+bool isEightBitFormat(const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  return ext == ".png" || ext == ".jpg" || ext == ".jpeg";
+}
+
+// An 8-bit image is a rendered picture: RGB tiles of an image whose display window starts
+// at the origin, written through gridrt's writeImage (sRGB-encoded as gridrt encodes).
+void writeEightBit(const std::string& path, const OIIO::ImageBuf& merged) {
+  const OIIO::ImageSpec& spec = merged.spec();
+  if (spec.nchannels != 3)
+    throw MergeError("a .png or .jpg needs RGB tiles; these have " +
+                     std::to_string(spec.nchannels) + " channels (write .exr)");
+  if (spec.full_x != 0 || spec.full_y != 0)
+    throw MergeError("a .png or .jpg needs tiles of an image whose display window starts at 0,0");
+  gridrt::Film film;
+  film.width = spec.width;
+  film.height = spec.height;
+  film.rgb.resize(size_t(film.width) * film.height * 3);
+  merged.get_pixels(merged.roi(), OIIO::TypeDesc::FLOAT, film.rgb.data());
+  try {
+    gridrt::writeImage(path, film);
+  } catch (const gridrt::RenderError& e) {
+    throw MergeError(e.what());
+  }
 }
 
 }  // namespace
@@ -128,7 +166,8 @@ bool isFloatFormat(const std::string& path) {
 int main(int argc, char** argv) {
   const char* usage =
       "usage: merge_tiles OUT.exr TILE1.exr [TILE2.exr ...]\n"
-      "  pastes tiles written by 'gridrt --crop X0,Y0,X1,Y1 --crop-output window'\n";
+      "  pastes tiles written by 'gridrt --crop X0,Y0,X1,Y1 --crop-output window';\n"
+      "  OUT may be .exr/.tif/.tiff (floats, exact) or .png/.jpg (encoded as gridrt does)\n";
   if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
     std::cout << usage;
     return 0;
@@ -138,9 +177,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string out = argv[1];
-  // 8-bit formats would round (and OpenImageIO would not sRGB-encode): keep floats exact.
-  if (!isFloatFormat(out)) {
-    std::cerr << "merge_tiles: the output must be .exr, .tif or .tiff, got '" << out << "'\n";
+  // Floats are kept exactly; 8-bit files are encoded once, after the merge, by gridrt's writer.
+  if (!isFloatFormat(out) && !isEightBitFormat(out)) {
+    std::cerr << "merge_tiles: the output must be .exr, .tif, .tiff, .png, .jpg or .jpeg, got '"
+              << out << "'\n";
     return 2;
   }
   try {
@@ -149,7 +189,11 @@ int main(int argc, char** argv) {
       tiles.push_back(readTile(argv[i]));
       checkConsistent(tiles.front(), tiles.back());
     }
-    writeMerged(out, paste(tiles));
+    const OIIO::ImageBuf merged = paste(tiles);
+    if (isEightBitFormat(out))
+      writeEightBit(out, merged);
+    else
+      writeMerged(out, merged);
   } catch (const MergeError& e) {
     std::cerr << "merge_tiles: " << e.what() << '\n';
     return 1;

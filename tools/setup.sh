@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sets GridRT up on a Debian machine: installs the Debian packages that are missing
 # (as root, or through sudo; otherwise prints the exact command to run), then configures
-# a Release build in build/ and builds the renderer, tools and tests.
+# a Release build in build/ and builds the renderer, tools and tests. The render farm
+# (tools/gridrt-farm) runs on Debian's python3 with python3-distributed (Dask).
 # With --bench it also sets up the benchmark harness: its Python packages (matplotlib,
 # numpy, OpenImageIO from PyPI into .venv/, via tools/setup_python.sh) and Embree 3
 # (Debian's libembree-dev), the peer tools/bench.py measures beside GridRT.
@@ -21,7 +22,7 @@ PACKAGES=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libglm-dev libopenimageio-dev openimageio-tools libtinygltf-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev libhwy-dev libtbb-dev
-  python3 python3-venv
+  python3 python3-venv python3-distributed python3-psutil
 )
 if [ "$bench" -eq 1 ]; then PACKAGES+=(libembree-dev); fi
 

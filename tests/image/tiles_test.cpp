@@ -6,6 +6,8 @@
 
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -169,6 +171,46 @@ TEST(Tiles, FullOutputIsZeroOutsideTheWindowAndTheRenderInside) {
         bool inside = x >= 8 && x < 40 && y >= 4 && y < 30;
         ASSERT_EQ(b.pixels[i], inside ? a.pixels[i] : 0.0f) << "pixel " << x << "," << y;
       }
+}
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// An 8-bit OUT is encoded once, after the merge, by gridrt's own writer: the merged PNG is
+// gridrt's PNG of the full render byte for byte (uneven tiles, jittered samples, so tiles
+// would round differently if each were encoded on its own with another encoder).
+TEST(Tiles, MergedPngIsTheFullRendersPngByteForByte) {
+  if (!std::filesystem::exists(mergeTilesBinary()))
+    GTEST_SKIP() << "merge_tiles is not built at " << mergeTilesBinary();
+  const std::vector<Rect> tiles{{0, 0, 23, 17}, {23, 0, 64, 17}, {0, 17, 23, 48}, {23, 17, 64, 48}};
+  const std::string full = tempPath("png_full.png"), merged = tempPath("png_merged.png");
+  render(full, {"--spp", "3"});
+  std::vector<std::string> merge{mergeTilesBinary(), merged};
+  for (size_t k = 0; k < tiles.size(); ++k) {
+    std::string tile = tempPath("png_tile" + std::to_string(k) + ".exr");
+    render(tile, {"--spp", "3", "--crop", tiles[k].text(), "--crop-output", "window"});
+    merge.push_back(tile);
+  }
+  expectSuccess(merge);
+  const std::string a = fileBytes(full), b = fileBytes(merged);
+  ASSERT_GT(a.size(), 100u);
+  EXPECT_TRUE(a == b) << "merged PNG (" << b.size() << " bytes) differs from gridrt's (" << a.size()
+                      << " bytes)";
+}
+
+// A one-channel AOV has no colours to encode: an 8-bit OUT is refused, nothing written.
+TEST(Tiles, EightBitOutputOfNonRgbTilesIsRefused) {
+  if (!std::filesystem::exists(mergeTilesBinary()))
+    GTEST_SKIP() << "merge_tiles is not built at " << mergeTilesBinary();
+  const std::string tile = tempPath("aov_tile_image.exr"), depth = tempPath("aov_tile_depth.exr");
+  render(tile, {"--crop", "0,0,64,48", "--crop-output", "window", "--aov", "depth=" + depth});
+  const std::string merged = tempPath("aov_merged.png");
+  CommandResult r = runCommand({mergeTilesBinary(), merged, depth});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("needs RGB tiles"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(merged));
 }
 
 TEST(Tiles, OverlappingTilesAreRefused) {

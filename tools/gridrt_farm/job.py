@@ -1,0 +1,193 @@
+"""One farm job on a connected Dask client: a task per tile of each missing frame, handed
+out in order (frames in turn, tiles in --tile-order); each result kept until its frame is
+complete, then the frame merged and written. Faults:
+- a worker that dies takes its tasks with it; Dask runs them again elsewhere (up to
+  distributed.scheduler.allowed-failures deaths of one task);
+- gridrt failing a task (exit 1, or a crash) tries it again on a worker it has not failed
+  on, up to --retries times; when none is left, or gridrt exits 2 (a usage error, the same
+  everywhere), the job ends with gridrt's one-line message and exit status, the tiles of
+  unfinished frames are removed, and the frames already written stay.
+"""
+import statistics
+import time
+import uuid
+import warnings
+
+import cloudpickle
+
+from . import cluster, worker_task
+from .merge import FrameTiles
+from .progress import Progress
+from .tiles import ordered, split
+
+WAIT_SECONDS = 0.5  # the longest wait between two looks at the cluster
+
+
+class JobFailed(Exception):
+    def __init__(self, message, code):
+        super().__init__(message)
+        self.code = code
+
+
+class Task:
+    def __init__(self, frame_pos, frame, tile_index, tile):
+        self.frame_pos, self.frame, self.tile_index, self.tile = frame_pos, frame, tile_index, tile
+        self.failed_on, self.attempts = set(), 0
+
+
+class FarmJob:
+    def __init__(self, client, command, size, scene, scene_shown, gridrt, merge_tiles):
+        self.client, self.cmd = client, command
+        self.width, self.height = size
+        self.scene, self.scene_shown = scene, scene_shown
+        self.gridrt, self.merge_tiles = gridrt, merge_tiles
+        self.options = ["--width", str(self.width), "--height", str(self.height)]
+        for flag, value in command.gridrt_options:
+            self.options += [flag] if value is None else [flag, value]
+        self.job_id = uuid.uuid4().hex[:8]
+        self.stats = {"tasks": 0, "retries": 0, "workers_lost": 0, "workers_seen": 0,
+                      "frames_written": 0, "frames_kept": 0, "rays": 0, "output": command.output,
+                      "width": self.width, "height": self.height,
+                      "tiles": list(command.tiles), "task_seconds": [], "gridrt_frame_ms": [],
+                      "gridrt_startup_ms": [], "merge_seconds": [], "seconds": 0.0}
+
+    def spec(self, task):
+        return {"gridrt": self.gridrt, "options": self.options, "frame": task.frame,
+                "crop": task.tile.crop(), "scene_shown": self.scene_shown}
+
+    def submit(self, task, scene_ref, priority, workers=None):
+        task.attempts += 1
+        key = f"gridrt-{self.job_id}-{task.frame_pos}-{task.tile_index}-{task.attempts}"
+        future = self.client.submit(worker_task.render_tile, self.spec(task), scene_ref,
+                                    key=key, pure=False, priority=priority,
+                                    workers=sorted(workers) if workers else None,
+                                    allow_other_workers=False)
+        self.owner[future.key] = (task, priority)
+        return future
+
+    def run(self):
+        started = time.monotonic()
+        tiles = ordered(split(self.width, self.height, *self.cmd.tiles), self.width, self.height,
+                        self.cmd.tile_order)
+        frames = []
+        for frame in self.cmd.frame_numbers():
+            output = self.cmd.output_of(frame)
+            if self.cmd.resume and _exists(output):
+                self.stats["frames_kept"] += 1
+            else:
+                frames.append((frame, output))
+        tasks = [Task(pos, frame, k, tile) for pos, (frame, _) in enumerate(frames)
+                 for k, tile in enumerate(tiles)]
+        self.stats["tasks"] = len(tasks)
+        if not tasks:
+            self.stats["seconds"] = time.monotonic() - started
+            return self.stats
+        # The task's module goes to the workers by value: they need no copy of the farm.
+        cloudpickle.register_pickle_by_value(worker_task)
+        scene_ref = self.scene
+        if isinstance(self.scene, dict):
+            # A task whose result is the scene: each worker fetches it once, and a copy lost
+            # with a worker is made again from the task (scattered data would be gone).
+            with warnings.catch_warnings():
+                warnings.filterwarnings("ignore", message=".*[Ll]arge object.*")
+                scene_ref = self.client.submit(worker_task.scene_data, self.scene,
+                                               key=f"gridrt-scene-{self.job_id}", pure=False,
+                                               priority=1)
+        self.owner = {}
+        self.frame_tiles = {pos: FrameTiles(output, len(tiles))
+                            for pos, (_, output) in enumerate(frames)}
+        seen, done_tasks, alone_since = cluster.alive_workers(self.client), 0, None
+        active = {self.submit(t, scene_ref, -k) for k, t in enumerate(tasks)}
+        progress = Progress(len(tasks), len(frames), self.cmd.quiet)
+        try:
+            while active:
+                done = self._wait(active)
+                for future in done:
+                    active.discard(future)
+                    replacement = self._finish(future, scene_ref)
+                    if replacement is not None:
+                        active.add(replacement)
+                    else:
+                        done_tasks += 1
+                alive = cluster.alive_workers(self.client)
+                seen |= alive
+                self.stats["workers_lost"] = len(seen - alive)
+                alone_since = None if alive else (alone_since or time.monotonic())
+                patience = self.cmd.wait_for_workers
+                if alone_since and time.monotonic() - alone_since > patience:
+                    raise JobFailed(f"gridrt-farm: no worker alive for {patience:g} s "
+                                    "(--wait-for-workers)", 1)
+                progress.update(done_tasks, self.stats["frames_written"], len(alive))
+        except BaseException:
+            self.client.cancel(list(active))
+            for tiles_of_frame in self.frame_tiles.values():
+                tiles_of_frame.discard()
+            raise
+        finally:
+            progress.close()
+        self.stats["workers_seen"] = len(seen)
+        self.stats["seconds"] = time.monotonic() - started
+        return self.stats
+
+    def _wait(self, active):
+        from distributed import wait
+        try:
+            return wait(list(active), timeout=WAIT_SECONDS, return_when="FIRST_COMPLETED").done
+        except TimeoutError:
+            return set()
+
+    def _finish(self, future, scene_ref):
+        """Handles a finished future; returns the future of a retry, or None."""
+        task, priority = self.owner.pop(future.key)
+        try:
+            result = future.result()
+        except Exception as e:  # Dask gave up: the task killed its workers (KilledWorker)
+            raise JobFailed(f"gridrt-farm: {self._name(task)} was lost with every worker that "
+                            f"ran it ({type(e).__name__})", 1) from None
+        if not result["ok"]:
+            return self._retry(task, result, scene_ref, priority)
+        self.stats["rays"] += result["rays"]
+        self.stats["task_seconds"].append(result["seconds"])
+        self.stats["gridrt_frame_ms"].append(result["frame_ms"])
+        self.stats["gridrt_startup_ms"].append(result["load_ms"] + result["build_ms"] +
+                                               result["compile_ms"])
+        frame = self.frame_tiles[task.frame_pos]
+        frame.add(task.tile_index, result["tile"])
+        if frame.complete():
+            merge_started = time.monotonic()
+            try:
+                frame.merge(self.merge_tiles)
+            except Exception as e:
+                raise JobFailed(f"gridrt-farm: {e}", 1) from None
+            self.stats["merge_seconds"].append(time.monotonic() - merge_started)
+            self.stats["frames_written"] += 1
+        return None
+
+    def _retry(self, task, result, scene_ref, priority):
+        code = result["code"]
+        if code == 2:  # a usage error: every worker would say the same
+            raise JobFailed(result["message"], 2)
+        task.failed_on.add(result["worker"])
+        others = cluster.alive_workers(self.client) - task.failed_on
+        if task.attempts > self.cmd.retries or not others:
+            raise JobFailed(result["message"], code if code > 0 else 1)
+        self.stats["retries"] += 1
+        return self.submit(task, scene_ref, priority, workers=others)
+
+    def _name(self, task):
+        frame = "" if task.frame is None else f" of frame {task.frame}"
+        return f"tile {task.tile.crop()}{frame}"
+
+
+def summary_numbers(stats):
+    """Medians for the statistics file (the per-task lists stay beside them)."""
+    out = dict(stats)
+    for key in ("task_seconds", "gridrt_frame_ms", "gridrt_startup_ms", "merge_seconds"):
+        values = stats[key]
+        out[key + "_median"] = statistics.median(values) if values else None
+    return out
+
+
+def _exists(path):
+    import os
+    return os.path.isfile(path)
