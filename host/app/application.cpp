@@ -28,6 +28,7 @@
 #include "reference_intersector.h"
 #include "renderer.h"
 #include "stopwatch.h"
+#include "texture_decoding.h"
 #include "uniform_grid.h"
 #include "window_output.h"
 
@@ -88,7 +89,11 @@ auto during(const std::string& what, Step&& step) -> decltype(step()) {
 
 // The built-in scene is not loaded through the glTF loader, so --camera is checked here.
 Scene loadScene(const Options& o) {
-  if (!o.scene.empty()) return loadGltfFile(o.scene, GltfLoadOptions{o.camera_name});
+  if (!o.scene.empty()) {
+    Scene scene = loadGltfFile(o.scene, GltfLoadOptions{o.camera_name});
+    decodeTextures(scene);  // the loader keeps its images encoded
+    return scene;
+  }
   Scene scene = makeDefaultScene();
   if (!o.camera_name.empty() && o.camera_name != scene.camera.name && o.camera_name != "0")
     throw UsageError("--camera: the built-in default scene has no camera '" + o.camera_name +
@@ -129,10 +134,12 @@ Camera chooseCamera(const Options& o, const Scene& scene) {
 }
 
 std::vector<float> aovData(const PrimaryAovs& a, const std::string& name, int& channels) {
-  channels = name == "normal" ? 3 : 1;
+  channels = name == "normal" || name == "geonormal" || name == "albedo" ? 3 : 1;
   if (name == "depth") return a.depth;
   if (name == "primid") return a.primid;
-  if (name == "normal") return a.normal;
+  if (name == "normal") return a.shading_normal;
+  if (name == "geonormal") return a.normal;
+  if (name == "albedo") return a.albedo;
   if (name == "tests") return a.tests;
   if (name == "pe") return a.pe;
   return a.list_length;

@@ -13,7 +13,8 @@ namespace gridrt {
 
 namespace {
 
-const char* const kAovNames[] = {"depth", "primid", "normal", "tests", "pe", "listlen"};
+const char* const kAovNames[] = {"depth",  "primid", "normal", "geonormal",
+                                 "albedo", "tests",  "pe",     "listlen"};
 
 // The checks of every numeric option, one message each kind of mistake:
 // "expected an integer in 1..4096, got '1.5'", "expected a finite number in 0..1, got 'nan'".
@@ -214,7 +215,8 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.add_flag("--primary-only", o.primary_only,
                "primary rays only, headlight shading (the paper's measurement)");
   app.add_option("--aov", raw.aovs,
-                 "NAME=FILE (repeatable; .exr): depth, primid, normal, tests, pe, listlen")
+                 "NAME=FILE (repeatable; .exr): depth, primid, normal, geonormal, albedo, "
+                 "tests, pe, listlen")
       ->type_name("NAME=FILE")
       ->expected(1)  // one value per --aov (the help shows no "..."), so a scene may follow
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
@@ -305,8 +307,8 @@ void finish(Options& o, const RawOptions& raw) {
     for (const char* k : kAovNames) known |= name == k;
     if (eq == std::string::npos || eq + 1 == spec.size() || !known)
       throw UsageError(
-          "--aov: expected NAME=FILE with NAME one of depth, primid, normal, tests, "
-          "pe, listlen; got '" +
+          "--aov: expected NAME=FILE with NAME one of depth, primid, normal, geonormal, "
+          "albedo, tests, pe, listlen; got '" +
           spec + "'");
     o.aovs.emplace_back(name, spec.substr(eq + 1));
   }

@@ -15,6 +15,7 @@
 #include "intersector.h"
 #include "pixel_window.h"
 #include "scene.h"
+#include "surface_textures.h"
 #include "whitted_shading.h"
 
 namespace gridrt {
@@ -34,7 +35,7 @@ struct RenderSettings {
   glm::vec3 background{0.0f};     // colour of rays that miss (black, as in the paper)
   float ambient = 0.05f;          // ambient radiance factor: ambient * diffuse albedo, lit or not
   RayOffset ray_offset;           // how secondary ray origins leave the surface
-  bool want_aovs = true;          // fill the depth / primid / normal AOVs of primary rays
+  bool want_aovs = true;          // fill the depth / primid / normal / albedo AOVs of primary rays
   bool want_diagnostics = false;  // fill tests / PE / list-length AOVs of primary rays
   PixelWindow crop;  // render only these pixels (the film and AOVs hold the window alone)
   // Adaptive supersampling (--aa adaptive): centres first, then aa_samples jittered samples
@@ -57,12 +58,14 @@ struct RayCounts {
 
 // Primary-ray AOVs (sample 0 of each pixel).
 struct PrimaryAovs {
-  std::vector<float> depth;        // t of the primary hit (unit direction), -1 on a miss
-  std::vector<float> primid;       // global triangle index, -1 on a miss
-  std::vector<float> normal;       // geometric normal (xyz), 0 on a miss
-  std::vector<float> tests;        // ray-triangle tests of the primary ray
-  std::vector<float> pe;           // winning PE, -1 on a miss
-  std::vector<float> list_length;  // PEs in the traversal list
+  std::vector<float> depth;           // t of the primary hit (unit direction), -1 on a miss
+  std::vector<float> primid;          // global triangle index, -1 on a miss
+  std::vector<float> normal;          // geometric normal (xyz), 0 on a miss
+  std::vector<float> shading_normal;  // the normal shading used, facing the ray (xyz), 0 on a miss
+  std::vector<float> albedo;          // linear base colour: factor x texture x COLOR_0 (rgb)
+  std::vector<float> tests;           // ray-triangle tests of the primary ray
+  std::vector<float> pe;              // winning PE, -1 on a miss
+  std::vector<float> list_length;     // PEs in the traversal list
 };
 
 struct FrameTimes {
@@ -101,6 +104,7 @@ class Renderer {
     int pixel;
     glm::vec3 weight;  // throughput from the camera to this ray
     RayKind kind;
+    float cone = 0.0f;  // the ray cone's width at the ray's origin (texture level of detail)
   };
   struct ShadowRay {
     int pixel;
@@ -171,8 +175,10 @@ class Renderer {
   // light (so every pixel's sum is the same, bit for bit).
   void addPassRadiance(int depths, PrimaryPaths primary);
   // The AOVs of window_pixels_ (the arrays sized for the film by render).
-  void fillPrimaryAovs(PrimaryAovs& aovs, const std::vector<GrHit>& hits,
-                       const RayDiagnostics& diagnostics, int spp);
+  void fillPrimaryAovs(PrimaryAovs& aovs, const std::vector<GrRay>& rays,
+                       const std::vector<GrHit>& hits, const RayDiagnostics& diagnostics, int spp);
+  // The width of a ray cone that left its origin `cone` wide after distance t.
+  float coneWidth(float cone, float t) const { return cone + cone_spread_ * t; }
   struct Spawned;
   // The chunks' rays (and their shadows or paths) one after the other, in chunk order,
   // copied on all cores to all_rays / all_extras from `offset` on (both grown if too
@@ -191,6 +197,10 @@ class Renderer {
   std::vector<ShadingTriangle> shading_triangles_;  // per triangle
   std::vector<Light> lights_;                       // the scene's, or the default light
   std::vector<SurfaceTerms> material_terms_;        // per material
+  SurfaceTextures surface_textures_;                // textures and vertex colours at hits
+  // Ray cones (surface_textures.h): a camera ray's width at the camera, and the angle a
+  // cone widens by per unit of distance (a pixel's; curvature ignored at bounces).
+  float cone_origin_ = 0.0f, cone_spread_ = 0.0f;
 
   // Rays one chunk of a generation spawns while shading; concatenated in chunk order
   // afterwards, so the order is the rays' whatever thread shaded which chunk.
