@@ -453,8 +453,9 @@ void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrRay>& rays,
       const GrRay& ray = rays[r];
       const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim,
                                         ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
-      const glm::vec3 n(h.nx, h.ny, h.nz), d(ray.dx, ray.dy, ray.dz);
       const int material = scene_.material_of[hit.prim];
+      const glm::vec3 d(ray.dx, ray.dy, ray.dz);
+      const glm::vec3 n = mappedNormal(h, hit, d, cone_origin_);
       const glm::vec3 albedo = surface_textures_.varies(material)
                                    ? surface_textures_
                                          .at(hit.prim, glm::vec3(h.px, h.py, h.pz),
@@ -472,6 +473,23 @@ void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrRay>& rays,
       a.list_length[p] = float(diagnostics.list_length[r]);
     }
   }
+}
+
+glm::vec3 Renderer::mappedNormal(const HitSurface& h, const GrHit& hit, const glm::vec3& d,
+                                 float cone) const {
+  const glm::vec3 n(h.nx, h.ny, h.nz);
+  if (!surface_textures_.hasNormalMap(scene_.material_of[hit.prim])) return n;
+  return surface_textures_.mappedNormal(hit.prim, glm::vec3(h.px, h.py, h.pz), n, h.backface,
+                                        coneWidth(cone, hit.t), glm::dot(n, d));
+}
+
+void Renderer::applyNormalMap(SurfaceLanes& lanes, int k, float cone) const {
+  const glm::vec3 n(lanes.nx[k], lanes.ny[k], lanes.nz[k]);
+  const glm::vec3 d(lanes.dx[k], lanes.dy[k], lanes.dz[k]);
+  const glm::vec3 mapped = surface_textures_.mappedNormal(
+      lanes.tri[k], glm::vec3(lanes.px[k], lanes.py[k], lanes.pz[k]), n, lanes.backface[k] != 0,
+      coneWidth(cone, lanes.t[k]), glm::dot(n, d));
+  lanes.nx[k] = mapped.x, lanes.ny[k] = mapped.y, lanes.nz[k] = mapped.z;
 }
 
 bool Renderer::worthTracing(const glm::vec3& weight) const {
@@ -513,15 +531,15 @@ size_t Renderer::shadeHeadlight(int depth, const std::vector<GrRay>& rays, Prima
       const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim,
                                         ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
       const int material = scene_.material_of[hit.prim];
-      const glm::vec3 n(h.nx, h.ny, h.nz), d(ray.dx, ray.dy, ray.dz);
+      const glm::vec3 d(ray.dx, ray.dy, ray.dz);
+      const glm::vec3 n = mappedNormal(h, hit, d, cone_origin_);
       const glm::vec3 base = surface_textures_.varies(material)
                                  ? surface_textures_
                                        .at(hit.prim, glm::vec3(h.px, h.py, h.pz),
                                            coneWidth(cone_origin_, hit.t), glm::dot(n, d))
                                        .base_color
                                  : scene_.materials[material].base_color;
-      value = weight * base *
-              std::fabs(glm::dot(glm::vec3(h.nx, h.ny, h.nz), glm::vec3(ray.dx, ray.dy, ray.dz)));
+      value = weight * base * std::fabs(glm::dot(n, d));
     }
     if (into_pixels)
       radiance_[window_pixels_[i]] += value;
@@ -606,6 +624,9 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
         lanes.t[k] = lanes.t[0], lanes.tri[k] = lanes.tri[0];
       }
       computeSurfaces(smooth_triangles, geometric_normals_.data(), lanes);
+      for (int k = 0; k < count; ++k)  // normal maps turn the shading normal before the lights
+        if (surface_textures_.hasNormalMap(scene_.material_of[lanes.tri[k]]))
+          applyNormalMap(lanes, k, block_path[k].cone);
       for (size_t l = 0; l < lights_.size(); ++l)
         computeLightLanes(lights_[l], lanes, out.light_lanes[l]);
       for (int k = 0; k < count; ++k) {

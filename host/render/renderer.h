@@ -177,6 +177,12 @@ class Renderer {
   // The AOVs of window_pixels_ (the arrays sized for the film by render).
   void fillPrimaryAovs(PrimaryAovs& aovs, const std::vector<GrRay>& rays,
                        const std::vector<GrHit>& hits, const RayDiagnostics& diagnostics, int spp);
+  // The shading normal of hit surface h, turned by its material's normal map if it has one
+  // (d: the ray's direction; cone: its cone's width at its origin).
+  glm::vec3 mappedNormal(const HitSurface& h, const GrHit& hit, const glm::vec3& d,
+                         float cone) const;
+  // The same for lane k of `lanes`, written back into its shading normal.
+  void applyNormalMap(SurfaceLanes& lanes, int k, float cone) const;
   // The width of a ray cone that left its origin `cone` wide after distance t.
   float coneWidth(float cone, float t) const { return cone + cone_spread_ * t; }
   struct Spawned;

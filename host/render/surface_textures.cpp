@@ -78,6 +78,50 @@ glm::vec4 SurfaceTextures::lookup(const TextureSlot& slot, bool colour, int tri,
   return sampleTexture(texels, texture, mapped, std::isnan(lod) ? 0.0f : lod);
 }
 
+glm::vec4 SurfaceTextures::tangentAt(int tri, const glm::vec3& b, const glm::vec3& n,
+                                     int set) const {
+  const size_t v = 3 * size_t(tri);
+  if (!scene_.tangents.empty() && scene_.tangents[v] != glm::vec4(0.0f)) {
+    const glm::vec4* t = &scene_.tangents[v];
+    const glm::vec3 sum = b.x * glm::vec3(t[0]) + b.y * glm::vec3(t[1]) + b.z * glm::vec3(t[2]);
+    return glm::vec4(sum, t[0].w);
+  }
+  const std::vector<glm::vec2>& uv = scene_.texcoords[set];
+  if (uv.empty()) return glm::vec4(0.0f);
+  const Triangle& t = triangles_[size_t(tri)];
+  const glm::vec2 d1 = uv[v + 1] - uv[v], d2 = uv[v + 2] - uv[v];
+  const float det = d1.x * d2.y - d2.x * d1.y;
+  if (!(std::fabs(det) > 0.0f)) return glm::vec4(0.0f);
+  const glm::vec3 dpdu = (t.e1 * d2.y - t.e2 * d1.y) / det;
+  const glm::vec3 dpdv = (t.e2 * d1.x - t.e1 * d2.x) / det;
+  return glm::vec4(dpdu, glm::dot(glm::cross(n, dpdu), dpdv) > 0.0f ? -1.0f : 1.0f);
+}
+
+glm::vec3 SurfaceTextures::mappedNormal(int tri, const glm::vec3& p, const glm::vec3& n,
+                                        bool backface, float footprint, float cos_theta) const {
+  const Material& m = scene_.materials[size_t(scene_.material_of[size_t(tri)])];
+  const TextureSlot& slot = m.normal_texture;
+  const Texture& texture = scene_.textures[size_t(slot.texture)];
+  if (texture.image < 0 || scene_.images[size_t(texture.image)].data.empty()) return n;
+  const glm::vec3 front = backface ? -n : n;
+  const glm::vec3 b = barycentrics(tri, p);
+  const glm::vec4 tangent = tangentAt(tri, b, front, slot.texcoord);
+  const glm::vec3 t = glm::vec3(tangent) - front * glm::dot(front, glm::vec3(tangent));
+  const float t_length = glm::length(t);
+  if (tangent.w == 0.0f || !(t_length > 0.0f) || !std::isfinite(t_length)) return n;
+  const glm::vec3 unit_t = t / t_length;
+  const glm::vec3 bitangent = glm::cross(front, unit_t) * tangent.w;
+  const float cosine = std::fabs(cos_theta);
+  const float footprint_log2 =
+      footprint > 0.0f && cosine > 0.0f ? std::log2(footprint / cosine) : -INFINITY;
+  const glm::vec3 texel = glm::vec3(lookup(slot, false, tri, b, footprint_log2)) * 2.0f - 1.0f;
+  const glm::vec3 mapped = unit_t * (texel.x * m.normal_scale) +
+                           bitangent * (texel.y * m.normal_scale) + front * texel.z;
+  const float length = glm::length(mapped);
+  if (!(length > 0.0f) || !std::isfinite(length)) return n;
+  return (backface ? -mapped : mapped) / length;
+}
+
 MaterialSample SurfaceTextures::at(int tri, const glm::vec3& p, float footprint,
                                    float cos_theta) const {
   const Material& m = scene_.materials[size_t(scene_.material_of[size_t(tri)])];

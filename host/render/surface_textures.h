@@ -39,6 +39,20 @@ class SurfaceTextures {
   // the finest level); cos_theta: the cosine between the ray and the surface normal.
   MaterialSample at(int tri, const glm::vec3& p, float footprint, float cos_theta) const;
 
+  // Whether hits on `material` have their shading normal from a normal map.
+  bool hasNormalMap(int material) const {
+    return scene_.materials[size_t(material)].normal_texture.used();
+  }
+
+  // The shading normal n (unit, facing the ray; backface: the ray hit the back) at point p
+  // of triangle `tri` turned by the material's normal map: the texel (2 rgb - 1, x and y
+  // times normalTexture.scale) in the tangent frame (T, B, n). T is the interpolated
+  // TANGENT, else the triangle's dP/du; T made orthogonal to n; B = cross(n, T) times the
+  // tangent's w, else the sign that makes B point along -dP/dv (the image's up, glTF's
+  // +Y). n itself when the frame or the texel is degenerate or the image not decoded.
+  glm::vec3 mappedNormal(int tri, const glm::vec3& p, const glm::vec3& n, bool backface,
+                         float footprint, float cos_theta) const;
+
   // The barycentric weights of p in triangle `tri` (vertices in the scene's order); a
   // degenerate triangle weighs its vertices alike.
   glm::vec3 barycentrics(int tri, const glm::vec3& p) const;
@@ -51,6 +65,9 @@ class SurfaceTextures {
   };
   glm::vec4 lookup(const TextureSlot& slot, bool colour, int tri, const glm::vec3& b,
                    float footprint_log2) const;
+  // The world tangent and the bitangent's sign at barycentrics b of `tri` (normal n, the
+  // front side's), from TANGENT or from texture coordinate set `set`; w = 0 if none.
+  glm::vec4 tangentAt(int tri, const glm::vec3& b, const glm::vec3& n, int set) const;
 
   const Scene& scene_;
   std::vector<Triangle> triangles_;  // empty when no material varies

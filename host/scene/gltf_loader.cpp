@@ -879,7 +879,10 @@ class SceneBuilder {
       const glm::vec3 face = geometricNormal(p[0], p[1], p[2]);
       uint32_t stored[3] = {indices[t], indices[t + 1], indices[t + 2]};
       if (mirrored) std::swap(stored[1], stored[2]);
-      gltf::appendTriangleAttributes(extras, stored, scene_.material_of.size(), scene_);
+      glm::vec4 tangents[3];
+      for (int k = 0; k < 3; ++k)
+        tangents[k] = gltf::worldTangent(extras, stored[k], skinned ? skin[stored[k]] : world);
+      gltf::appendTriangleAttributes(extras, stored, tangents, scene_.material_of.size(), scene_);
       for (int k = 0; k < 3; ++k) {
         scene_.positions.push_back(p[k]);
         // Unusable file normals (zero, NaN) fall back to the face normal.

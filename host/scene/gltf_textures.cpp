@@ -190,7 +190,8 @@ void convertMaterialTextures(const tinygltf::Model& model, const tinygltf::Mater
   out.emissive_texture = slot(m.emissiveTexture, "emissiveTexture");
   out.occlusion_texture = slot(m.occlusionTexture, "occlusionTexture");
   out.occlusion_strength = float(std::clamp(m.occlusionTexture.strength, 0.0, 1.0));
-  if (m.normalTexture.index >= 0) warnOnce(warnings, "normal maps (normalTexture) are ignored");
+  out.normal_texture = slot(m.normalTexture, "normalTexture");
+  out.normal_scale = float(m.normalTexture.scale);
   if (m.alphaMode == "MASK" || m.alphaMode == "BLEND")
     warnOnce(warnings, "alphaMode " + m.alphaMode + " is not supported: drawn opaque");
   // Material extensions name their textures "...Texture" (transmissionTexture, ...).

@@ -11,7 +11,8 @@
 // - Texture slots (textureInfo): the texture, TEXCOORD_0 or _1, and KHR_texture_transform
 //   (offset, rotation, scale, texCoord) as the affine map in TextureSlot.
 // - A texture without a source (e.g. one that only names KHR_texture_basisu) is ignored
-//   with a warning; normal maps and the textures of material extensions too.
+//   with a warning; the textures of material extensions too, and alphaMode MASK and
+//   BLEND (drawn opaque).
 // Indices out of range (texture, source, sampler, buffer view) are SceneErrors naming the
 // element; a texCoord other than 0 or 1 is a warning and the slot is ignored.
 #pragma once

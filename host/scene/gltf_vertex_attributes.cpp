@@ -1,6 +1,8 @@
 // TEXCOORD_0/1 and COLOR_0 per triangle vertex (gltf_vertex_attributes.h).
 #include "gltf_vertex_attributes.h"
 
+#include <cmath>
+
 #include "gltf_accessors.h"
 
 namespace gridrt::gltf {
@@ -80,15 +82,43 @@ VertexAttributes readVertexAttributes(const tinygltf::Model& model, const tinygl
       colors[v] = glm::vec4(a.at(v, 0), a.at(v, 1), a.at(v, 2),
                             a.type == TINYGLTF_TYPE_VEC4 ? a.at(v, 3) : 1.0);
   }
+  if (const int index = attributeIndex(prim, "TANGENT"); index >= 0) {
+    const AccessorData a = readCounted(model, index, "TANGENT", vertex_count, where, label);
+    const bool ok = a.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                    (quantized && a.normalized &&
+                     (a.component_type == TINYGLTF_COMPONENT_TYPE_BYTE ||
+                      a.component_type == TINYGLTF_COMPONENT_TYPE_SHORT));
+    if (!ok || a.type != TINYGLTF_TYPE_VEC4)
+      wrongType(a, "TANGENT",
+                std::string("VEC4 of FLOAT") + (quantized ? " (or normalized BYTE/SHORT)" : ""),
+                label);
+    std::vector<glm::dvec4>& tangents = out.tangents.emplace(vertex_count);
+    for (size_t v = 0; v < vertex_count; ++v) tangents[v] = a.vec4(v);
+  }
   return out;
 }
 
+glm::vec4 worldTangent(const VertexAttributes& attributes, uint32_t vertex,
+                       const glm::dmat4& matrix) {
+  if (!attributes.tangents) return glm::vec4(0.0f);
+  const glm::dvec4& t = (*attributes.tangents)[vertex];
+  const glm::dvec3 moved = glm::dmat3(matrix) * glm::dvec3(t);
+  const double length = glm::length(moved);
+  if (!(length > 0.0) || !std::isfinite(length)) return glm::vec4(0.0f);
+  const bool mirrors = glm::determinant(glm::dmat3(matrix)) < 0.0;
+  const float sign = (t.w < 0.0) != mirrors ? -1.0f : 1.0f;
+  return glm::vec4(glm::vec3(moved / length), sign);
+}
+
 void appendTriangleAttributes(const VertexAttributes& attributes, const uint32_t vertices[3],
-                              size_t triangles_before, Scene& scene) {
+                              const glm::vec4 tangents[3], size_t triangles_before, Scene& scene) {
   for (int set = 0; set < 2; ++set)
     appendOne(scene.texcoords[set], attributes.texcoords[set], vertices, triangles_before,
               glm::vec2(0.0f));
   appendOne(scene.colors, attributes.colors, vertices, triangles_before, kWhite);
+  if (!attributes.tangents && scene.tangents.empty()) return;
+  scene.tangents.resize(3 * triangles_before, glm::vec4(0.0f));
+  for (int k = 0; k < 3; ++k) scene.tangents.push_back(tangents[k]);
 }
 
 void finishVertexAttributes(Scene& scene) {
@@ -96,6 +126,7 @@ void finishVertexAttributes(Scene& scene) {
   for (auto& uv : scene.texcoords)
     if (!uv.empty()) uv.resize(vertices, glm::vec2(0.0f));
   if (!scene.colors.empty()) scene.colors.resize(vertices, kWhite);
+  if (!scene.tangents.empty()) scene.tangents.resize(vertices, glm::vec4(0.0f));
 }
 
 }  // namespace gridrt::gltf

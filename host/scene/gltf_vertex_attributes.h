@@ -5,6 +5,8 @@
 // - TEXCOORD_n: VEC2, FLOAT or normalized UNSIGNED_BYTE/SHORT (glTF); with
 //   KHR_mesh_quantization also BYTE/SHORT, normalized or not, and non-normalized unsigned.
 // - COLOR_0: VEC3 (alpha 1) or VEC4, FLOAT or normalized UNSIGNED_BYTE/SHORT.
+// - TANGENT: VEC4, FLOAT (with KHR_mesh_quantization also normalized BYTE/SHORT), moved
+//   to world space by the vertex's matrix (worldTangent).
 // Anything else is a SceneError naming the accessor; a count unlike POSITION's too.
 // Morph targets of these attributes are not applied (the still pose moves positions and
 // normals only).
@@ -25,6 +27,7 @@ namespace gridrt::gltf {
 struct VertexAttributes {
   std::optional<std::vector<glm::vec2>> texcoords[2];
   std::optional<std::vector<glm::vec4>> colors;
+  std::optional<std::vector<glm::dvec4>> tangents;  // as the file stores them
 };
 
 VertexAttributes readVertexAttributes(const tinygltf::Model& model, const tinygltf::Primitive& prim,
@@ -36,8 +39,15 @@ VertexAttributes readVertexAttributes(const tinygltf::Model& model, const tinygl
 // first primitive with the attribute does, filled with the default for the triangles
 // before it ((0, 0) texture coordinates, white); once started, primitives without the
 // attribute add the default.
+// tangents: the vertices' world tangents (worldTangent).
 void appendTriangleAttributes(const VertexAttributes& attributes, const uint32_t vertices[3],
-                              size_t triangles_before, Scene& scene);
+                              const glm::vec4 tangents[3], size_t triangles_before, Scene& scene);
+
+// Vertex `vertex`'s tangent moved by `matrix` (its xyz unit, w the sign of the file's w
+// times that of the matrix's determinant, so that the bitangent mirrors with the mesh);
+// zero when the primitive has no TANGENT or the tangent is zero or not finite.
+glm::vec4 worldTangent(const VertexAttributes& attributes, uint32_t vertex,
+                       const glm::dmat4& matrix);
 
 // Pads the started arrays with the default to every triangle of the scene.
 void finishVertexAttributes(Scene& scene);

@@ -69,11 +69,14 @@ struct Material {
   bool double_sided = true;
   // Textures: base colour (times base_color, sRGB), metallic (B) and roughness (G) times
   // their factors, emissive (times emissive, sRGB), occlusion (R, scales the ambient term).
-  TextureSlot base_color_texture, metallic_roughness_texture, emissive_texture, occlusion_texture;
+  // Normal map: tangent-space normals (RGB as stored) scaled in x and y by normal_scale.
+  TextureSlot base_color_texture, metallic_roughness_texture, emissive_texture, occlusion_texture,
+      normal_texture;
   float occlusion_strength = 1.0f;
+  float normal_scale = 1.0f;
   bool textured() const {
     return base_color_texture.used() || metallic_roughness_texture.used() ||
-           emissive_texture.used() || occlusion_texture.used();
+           emissive_texture.used() || occlusion_texture.used() || normal_texture.used();
   }
 };
 
@@ -111,6 +114,10 @@ struct Scene {
   // COLOR_0 per triangle vertex (RGBA, linear); empty when no primitive has it (white for
   // the vertices of those without).
   std::vector<glm::vec4> colors;
+  // TANGENT per triangle vertex: a world-space unit tangent and in w the bitangent's sign
+  // (+1 or -1, mirroring transforms included); empty when no primitive has it, zero for the
+  // vertices of those without (their normal maps then take tangents from the UVs).
+  std::vector<glm::vec4> tangents;
   std::vector<int> material_of;  // per triangle, index into materials
   std::vector<Material> materials;
   std::vector<Texture> textures;

@@ -27,6 +27,7 @@ std::vector<ImageUse> imageUses(const Scene& scene) {
     mark(m.emissive_texture, true);
     mark(m.metallic_roughness_texture, false);
     mark(m.occlusion_texture, false);
+    mark(m.normal_texture, false);
   }
   return uses;
 }

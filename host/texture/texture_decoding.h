@@ -9,10 +9,10 @@ namespace gridrt {
 
 // Decodes every image a material reads, once per use: for base colour and emissive
 // textures into `colour` (the sRGB transfer undone on RGB, alpha as stored), for
-// metallic-roughness and occlusion into `data` (as stored); grey images are spread to
-// RGB, a missing alpha is 1; each with its mip levels (mip_levels.h). An image that cannot
-// be decoded (no bytes, an unknown format, corrupt, too large) is left empty and named in
-// one warning in Scene::warnings: its textures then look up nothing.
+// metallic-roughness, occlusion and normal textures into `data` (as stored); grey images are spread
+// to RGB, a missing alpha is 1; each with its mip levels (mip_levels.h). An image that cannot be
+// decoded (no bytes, an unknown format, corrupt, too large) is left empty and named in one warning
+// in Scene::warnings: its textures then look up nothing.
 void decodeTextures(Scene& scene);
 
 }  // namespace gridrt

@@ -248,6 +248,57 @@ TEST(SurfaceTextures, AMirrorShowsTheTextureItReflects) {
             << "pixel " << i << "," << j;
 }
 
+// A normal map of one texel on the quad (normal +z): its tangent-space normal (x, y, z) =
+// 2 rgb - 1 turned into the tangent frame: computed from the texture coordinates (T = +x
+// along u, B = +y, the image's up), or from TANGENT. The shading normal AOV shows it, and
+// a light straight above (irradiance pi, a white Lambert surface) gives kd (ambient + n.z).
+TEST(SurfaceTextures, NormalMapsTurnTheShadingNormalInTheTangentFrame) {
+  const glm::vec3 tangent_space(0.5f, 0.25f, 0.8f);
+  struct Case {
+    float scale;
+    std::vector<glm::vec4> tangents;
+    glm::vec3 expected;
+  };
+  const Case cases[] = {
+      {1.0f, {}, {0.5f, 0.25f, 0.8f}},
+      {2.0f, {}, {1.0f, 0.5f, 0.8f}},
+      // T = +y, w = -1: B = -cross(+z, +y) = +x.
+      {1.0f, std::vector<glm::vec4>(6, glm::vec4(0, 1, 0, -1)), {0.25f, 0.5f, 0.8f}},
+  };
+  for (const Case& c : cases) {
+    Scene scene = texturedQuad(TextureSlot{});
+    Material& m = scene.materials[0];
+    m.normal_texture = slot0();
+    m.normal_scale = c.scale;
+    m.roughness = 1.0f;  // Lambert alone
+    scene.tangents = c.tangents;
+    TexelLevel texel;
+    texel.width = texel.height = 1;
+    texel.texels = {glm::vec4((tangent_space + 1.0f) * 0.5f, 1.0f)};
+    scene.images[0].data.levels = {texel};
+    scene.lights[0].type = LightType::Directional;
+    scene.lights[0].intensity = 3.14159265f;
+    Camera camera;
+    camera.orthographic = true;
+    camera.xmag = camera.ymag = 0.5f;
+    camera.world = shapes::lookAtWorld({0.5f, 0.5f, 2.0f}, {0.5f, 0.5f, 0.0f});
+    ReferenceIntersector reference(scene);
+    RenderSettings settings;
+    settings.width = settings.height = 4;
+    Renderer renderer(scene, camera, reference, settings);
+    Frame frame;
+    renderer.render(frame);
+    const glm::vec3 want = glm::normalize(c.expected);
+    SCOPED_TRACE(c.scale);
+    for (size_t p = 0; p < 16; ++p)
+      for (int ch = 0; ch < 3; ++ch) {
+        ASSERT_NEAR(frame.aovs.shading_normal[3 * p + ch], want[ch], kInterpolationTolerance);
+        ASSERT_NEAR(frame.film.rgb[3 * p + ch], kFactor[ch] * (settings.ambient + want.z),
+                    kInterpolationTolerance);
+      }
+  }
+}
+
 TEST(SurfaceTextures, ShadingNormalAovIsTheInterpolatedNormalBesideTheGeometricOne) {
   Scene scene = texturedQuad(TextureSlot{});
   const glm::vec3 tilted(0.0f, 0.6f, 0.8f);

@@ -225,11 +225,38 @@ TEST(GltfTextures, IgnoredTexturesAreWarnings) {
   Document d;
   const std::string prim = triangleWithMaterial(d);
   std::string extra = texturedMaterial("{\"index\":0,\"texCoord\":2}", "{\"index\":0}", "{}");
-  extra.replace(extra.find("\"emissiveTexture\""), 0, "\"normalTexture\":{\"index\":0},");
+  extra.replace(extra.find("\"emissiveTexture\""), 0,
+                "\"alphaMode\":\"BLEND\",\"extensions\":{\"KHR_materials_transmission\":{"
+                "\"transmissionTexture\":{\"index\":0}}},");
   const Scene s = load(d.json(meshScene(prim, extra)));
   EXPECT_FALSE(s.materials[0].base_color_texture.used());
   EXPECT_TRUE(hasWarning(s, "baseColorTexture: TEXCOORD_2 is not supported"));
-  EXPECT_TRUE(hasWarning(s, "normal maps (normalTexture) are ignored"));
+  EXPECT_TRUE(hasWarning(s, "KHR_materials_transmission transmissionTexture is ignored"));
+  EXPECT_TRUE(hasWarning(s, "alphaMode BLEND is not supported: drawn opaque"));
+}
+
+TEST(GltfTextures, NormalMapsAndWorldTangents) {
+  Document d;
+  const int pos = d.accessor(bytesOf(kTriangle), kFloat, 3, "VEC3");
+  const int tangent = d.accessor(bytesOf(std::vector<float>{2, 0, 0, 1, 0, 3, 0, -1, 0, 0, 0, 1}),
+                                 kFloat, 3, "VEC4");
+  std::string extra = texturedMaterial("{\"index\":0}", "{\"index\":0}", "{}");
+  extra.replace(extra.find("\"emissiveTexture\""), 0,
+                "\"normalTexture\":{\"index\":0,\"scale\":0.5},");
+  std::string json =
+      d.json(meshScene("{\"attributes\":{\"POSITION\":" + std::to_string(pos) +
+                           ",\"TANGENT\":" + std::to_string(tangent) + "},\"material\":0}",
+                       extra));
+  // Mirrored in x: tangents mirror, their bitangent sign flips, vertices 1 and 2 swap.
+  json.replace(json.find("{\"mesh\":0}"), 10, "{\"mesh\":0,\"scale\":[-1,1,1]}");
+  const Scene s = load(json);
+  EXPECT_EQ(s.materials[0].normal_texture.texture, 0);
+  EXPECT_FLOAT_EQ(s.materials[0].normal_scale, 0.5f);
+  ASSERT_EQ(s.tangents.size(), 3u);
+  EXPECT_EQ(s.tangents[0], glm::vec4(-1, 0, 0, -1));  // unit, w flipped
+  EXPECT_EQ(s.tangents[1], glm::vec4(0, 0, 0, 0));    // the zero tangent: none
+  EXPECT_EQ(s.tangents[2], glm::vec4(0, 1, 0, 1));    // w -1, flipped to +1
+  EXPECT_FALSE(hasWarning(s, "normal"));
 }
 
 TEST(GltfTextures, TexcoordsAndColoursPerTriangleVertex) {
