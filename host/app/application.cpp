@@ -185,6 +185,7 @@ RenderSettings renderSettings(const Options& o) {
   settings.background = o.background;
   settings.ambient = o.ambient;
   settings.ray_offset = o.ray_offset;
+  settings.shading = o.shading;
   settings.adaptive_aa = o.adaptive_aa;
   settings.aa_samples = o.aa_samples;
   settings.aa_threshold = o.aa_threshold;

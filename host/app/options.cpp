@@ -125,7 +125,7 @@ void parseRayOffset(const std::string& text, RayOffset& offset) {
 
 struct RawOptions {
   std::string accel = "gridrt", grid = "auto", background, ray_offset = "robust", look_at;
-  std::string crop, crop_output = "full", intersector = "mt", aa = "uniform";
+  std::string crop, crop_output = "full", intersector = "mt", aa = "uniform", shading = "phong";
   std::vector<std::string> aovs;
   std::set<std::string> given;  // the options on the command line, e.g. "--spp"
 };
@@ -238,6 +238,10 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
                  "ray/triangle test: mt (Moeller-Trumbore) or watertight (Woop et al. 2013)")
       ->capture_default_str()
       ->check(CLI::IsMember({"mt", "watertight"}));
+  app.add_option("--shading", raw.shading,
+                 "lights: phong (the paper's) or gltf (glTF metallic-roughness BRDF)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"phong", "gltf"}));
   app.add_option("--aa", raw.aa,
                  "anti-aliasing: uniform (--spp samples) or adaptive (centres, then "
                  "--aa-samples more where neighbours differ by > --aa-threshold)")
@@ -289,6 +293,7 @@ void finish(Options& o, const RawOptions& raw) {
   parseGrid(raw.grid, o.grid);
   parseRayOffset(raw.ray_offset, o.ray_offset);
   o.watertight = raw.intersector == "watertight";
+  o.shading = raw.shading == "gltf" ? ShadingModel::Gltf : ShadingModel::Phong;
   o.adaptive_aa = raw.aa == "adaptive";
   if (!raw.background.empty()) o.background = parseVec3("--background", raw.background);
   if (!raw.look_at.empty()) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "crop_window.h"
+#include "gltf_brdf.h"
 #include "uniform_grid.h"
 #include "whitted_shading.h"
 
@@ -44,17 +45,18 @@ struct Options {
   glm::vec3 background{0.0f};
   float ambient = 0.05f;
   RayOffset ray_offset;
-  bool watertight = false;                    // --intersector watertight (default mt)
-  bool adaptive_aa = false;                   // --aa adaptive (default uniform --spp)
-  int aa_samples = 8;                         // extra samples of a refined pixel
-  float aa_threshold = 0.1f;                  // neighbour difference that triggers refinement
-  float min_path_weight = 0.0f;               // adaptive depth: 0 traces every bounce
-  std::string camera_name;                    // pick a glTF camera by name
-  std::optional<glm::vec3> eye, target;       // --look-at overrides
-  std::optional<float> fov_degrees;           // --fov override (vertical, degrees)
-  std::optional<PixelWindow> crop;            // --crop: render only this window of the image
-  CropOutput crop_output = CropOutput::Full;  // --crop-output full | window
-  std::vector<std::string> warnings;          // options that have no effect, said once
+  ShadingModel shading = ShadingModel::Phong;  // --shading phong | gltf
+  bool watertight = false;                     // --intersector watertight (default mt)
+  bool adaptive_aa = false;                    // --aa adaptive (default uniform --spp)
+  int aa_samples = 8;                          // extra samples of a refined pixel
+  float aa_threshold = 0.1f;                   // neighbour difference that triggers refinement
+  float min_path_weight = 0.0f;                // adaptive depth: 0 traces every bounce
+  std::string camera_name;                     // pick a glTF camera by name
+  std::optional<glm::vec3> eye, target;        // --look-at overrides
+  std::optional<float> fov_degrees;            // --fov override (vertical, degrees)
+  std::optional<PixelWindow> crop;             // --crop: render only this window of the image
+  CropOutput crop_output = CropOutput::Full;   // --crop-output full | window
+  std::vector<std::string> warnings;           // options that have no effect, said once
 };
 
 // Parses argv. Returns nullopt when --help or --version was handled (printed, exit 0).

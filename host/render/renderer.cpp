@@ -646,11 +646,14 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
         const float cone = coneWidth(path.cone, hit.t);
         SurfaceTerms terms = material_terms_[material];
         glm::vec3 base_color = mat.base_color, emissive = mat.emissive;
+        float metallic = mat.metallic, roughness = mat.roughness;
         float ambient = settings_.ambient;
         if (surface_textures_.varies(material)) {
           const MaterialSample here = surface_textures_.at(tri, p, cone, glm::dot(n, d));
           terms = surfaceTerms(mat, here.base_color, here.metallic, here.roughness);
           base_color = here.base_color;
+          metallic = here.metallic;
+          roughness = here.roughness;
           emissive = here.emissive;
           ambient *= here.occlusion;
         }
@@ -669,11 +672,17 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
           const glm::vec3 to_light(light.lx[k], light.ly[k], light.lz[k]);
           const glm::vec3 e(light.ex[k], light.ey[k], light.ez[k]);
           const float cos_theta = light.cos_theta[k];
-          glm::vec3 r = reflectDirection(-to_light, n);
-          float rv = std::max(0.0f, glm::dot(r, -d));
-          // pow(0, e) is 0 for the exponent (>= 1): no call for the half turned away.
-          const float highlight = rv > 0.0f ? std::pow(rv, terms.phong_exponent) : 0.0f;
-          glm::vec3 direct = terms.diffuse / kPi * e * cos_theta + terms.specular * e * highlight;
+          glm::vec3 direct;
+          if (settings_.shading == ShadingModel::Gltf) {
+            direct = gltfBrdf(base_color, metallic, roughness, n, -d, to_light, mat.transmission) *
+                     e * cos_theta;
+          } else {
+            glm::vec3 r = reflectDirection(-to_light, n);
+            float rv = std::max(0.0f, glm::dot(r, -d));
+            // pow(0, e) is 0 for the exponent (>= 1): no call for the half turned away.
+            const float highlight = rv > 0.0f ? std::pow(rv, terms.phong_exponent) : 0.0f;
+            direct = terms.diffuse / kPi * e * cos_theta + terms.specular * e * highlight;
+          }
           glm::vec3 contribution = weight * direct;
           if (glm::length(contribution) == 0.0f) continue;
           const size_t s = nextSlot(out.shadow_rays, out.shadows, out.shadow_count);

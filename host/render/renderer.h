@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "film.h"
+#include "gltf_brdf.h"
 #include "hit_surfaces.h"
 #include "intersector.h"
 #include "pixel_window.h"
@@ -29,12 +30,13 @@ constexpr size_t kMaxPassRays = size_t(1) << 18;
 struct RenderSettings {
   int width = 640;
   int height = 480;
-  int spp = 1;                    // samples per pixel: jittered inside the pixel when > 1
-  int max_depth = 5;              // reflection/refraction bounces after the primary hit
-  bool primary_only = false;      // primary rays with headlight shading (the paper's measurement)
-  glm::vec3 background{0.0f};     // colour of rays that miss (black, as in the paper)
-  float ambient = 0.05f;          // ambient radiance factor: ambient * diffuse albedo, lit or not
-  RayOffset ray_offset;           // how secondary ray origins leave the surface
+  int spp = 1;                 // samples per pixel: jittered inside the pixel when > 1
+  int max_depth = 5;           // reflection/refraction bounces after the primary hit
+  bool primary_only = false;   // primary rays with headlight shading (the paper's measurement)
+  glm::vec3 background{0.0f};  // colour of rays that miss (black, as in the paper)
+  float ambient = 0.05f;       // ambient radiance factor: ambient * diffuse albedo, lit or not
+  RayOffset ray_offset;        // how secondary ray origins leave the surface
+  ShadingModel shading = ShadingModel::Phong;  // punctual lights: Phong or the glTF BRDF
   bool want_aovs = true;          // fill the depth / primid / normal / albedo AOVs of primary rays
   bool want_diagnostics = false;  // fill tests / PE / list-length AOVs of primary rays
   PixelWindow crop;  // render only these pixels (the film and AOVs hold the window alone)
