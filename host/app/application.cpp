@@ -35,6 +35,7 @@
 #include "reference_intersector.h"
 #include "renderer.h"
 #include "stopwatch.h"
+#include "texture_decoding.h"
 #include "thread_count.h"
 #include "uniform_grid.h"
 #include "window_output.h"
@@ -157,6 +158,7 @@ SceneSource loadScene(const Options& o, const FrameJob& first, Scene& first_scen
                                 " animation(s); rendered in its still pose (--time or --frames "
                                 "poses it)");
     first_scene = document.flatten(GltfLoadOptions{o.camera_name});
+    decodeTextures(first_scene);  // the loader keeps its images encoded
     return source;
   }
   source.animated.emplace(std::move(document), GltfLoadOptions{o.camera_name}, o.animation);
@@ -166,6 +168,7 @@ SceneSource loadScene(const Options& o, const FrameJob& first, Scene& first_scen
         "the scene has no animation channels: --time/--frames render its "
         "still pose");
   first_scene = source.animated->at(*first.time);
+  decodeTextures(first_scene);  // once: every frame's pose reads the same images
   return source;
 }
 
@@ -204,10 +207,12 @@ Camera chooseCamera(const Options& o, const Scene& scene, const Bounds& framing)
 }
 
 std::vector<float> aovData(const PrimaryAovs& a, const std::string& name, int& channels) {
-  channels = name == "normal" ? 3 : 1;
+  channels = name == "normal" || name == "geonormal" || name == "albedo" ? 3 : 1;
   if (name == "depth") return a.depth;
   if (name == "primid") return a.primid;
-  if (name == "normal") return a.normal;
+  if (name == "normal") return a.shading_normal;
+  if (name == "geonormal") return a.normal;
+  if (name == "albedo") return a.albedo;
   if (name == "tests") return a.tests;
   if (name == "pe") return a.pe;
   return a.list_length;
@@ -253,6 +258,7 @@ RenderSettings renderSettings(const Options& o) {
   settings.background = o.background;
   settings.ambient = o.ambient;
   settings.ray_offset = o.ray_offset;
+  settings.shading = o.shading;
   settings.adaptive_aa = o.adaptive_aa;
   settings.aa_samples = o.aa_samples;
   settings.aa_threshold = o.aa_threshold;
@@ -510,7 +516,10 @@ int runApplication(const Options& given) {
     clock.restart();
     Stopwatch job_clock;
     Scene posed;
-    if (i > 0 && source.animated) posed = source.animated->at(*job.time);
+    if (i > 0 && source.animated) {
+      posed = source.animated->at(*job.time);
+      posed.images = first_scene.images;  // decoded once, for the first frame
+    }
     const Scene& scene = i > 0 && source.animated ? posed : first_scene;
     const double pose_ms = i > 0 ? clock.ms() : load_ms;
     const std::string note =

@@ -13,7 +13,8 @@ namespace gridrt {
 
 namespace {
 
-const char* const kAovNames[] = {"depth", "primid", "normal", "tests", "pe", "listlen"};
+const char* const kAovNames[] = {"depth",  "primid", "normal", "geonormal",
+                                 "albedo", "tests",  "pe",     "listlen"};
 
 // The checks of every numeric option, one message each kind of mistake:
 // "expected an integer in 1..4096, got '1.5'", "expected a finite number in 0..1, got 'nan'".
@@ -127,6 +128,7 @@ void parseRayOffset(const std::string& text, RayOffset& offset) {
 struct RawOptions {
   std::string accel = "gridrt", grid = "auto", background, ray_offset = "robust", look_at;
   std::string crop, crop_output = "full", intersector = "mt", aa = "uniform", frames;
+  std::string shading = "phong";
   std::vector<std::string> aovs;
   std::set<std::string> given;  // the options on the command line, e.g. "--spp"
 };
@@ -243,7 +245,8 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.add_flag("--primary-only", o.primary_only,
                "primary rays only, headlight shading (the paper's measurement)");
   app.add_option("--aov", raw.aovs,
-                 "NAME=FILE (repeatable; .exr): depth, primid, normal, tests, pe, listlen")
+                 "NAME=FILE (repeatable; .exr): depth, primid, normal, geonormal, albedo, "
+                 "tests, pe, listlen")
       ->type_name("NAME=FILE")
       ->expected(1)  // one value per --aov (the help shows no "..."), so a scene may follow
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
@@ -267,6 +270,10 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
                  "ray/triangle test: mt (Moeller-Trumbore) or watertight (Woop et al. 2013)")
       ->capture_default_str()
       ->check(CLI::IsMember({"mt", "watertight"}));
+  app.add_option("--shading", raw.shading,
+                 "lights: phong (the paper's) or gltf (glTF metallic-roughness BRDF)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"phong", "gltf"}));
   app.add_option("--aa", raw.aa,
                  "anti-aliasing: uniform (--spp samples) or adaptive (centres, then "
                  "--aa-samples more where neighbours differ by > --aa-threshold)")
@@ -330,6 +337,7 @@ void finish(Options& o, const RawOptions& raw) {
   parseGrid(raw.grid, o.grid);
   parseRayOffset(raw.ray_offset, o.ray_offset);
   o.watertight = raw.intersector == "watertight";
+  o.shading = raw.shading == "gltf" ? ShadingModel::Gltf : ShadingModel::Phong;
   o.adaptive_aa = raw.aa == "adaptive";
   if (!raw.background.empty()) o.background = parseVec3("--background", raw.background);
   if (!raw.look_at.empty()) {
@@ -349,8 +357,8 @@ void finish(Options& o, const RawOptions& raw) {
     for (const char* k : kAovNames) known |= name == k;
     if (eq == std::string::npos || eq + 1 == spec.size() || !known)
       throw UsageError(
-          "--aov: expected NAME=FILE with NAME one of depth, primid, normal, tests, "
-          "pe, listlen; got '" +
+          "--aov: expected NAME=FILE with NAME one of depth, primid, normal, geonormal, "
+          "albedo, tests, pe, listlen; got '" +
           spec + "'");
     o.aovs.emplace_back(name, spec.substr(eq + 1));
   }

@@ -9,6 +9,7 @@
 
 #include "crop_window.h"
 #include "frame_sequence.h"
+#include "gltf_brdf.h"
 #include "uniform_grid.h"
 #include "whitted_shading.h"
 
@@ -47,17 +48,18 @@ struct Options {
   glm::vec3 background{0.0f};
   float ambient = 0.05f;
   RayOffset ray_offset;
-  bool watertight = false;                    // --intersector watertight (default mt)
-  bool adaptive_aa = false;                   // --aa adaptive (default uniform --spp)
-  int aa_samples = 8;                         // extra samples of a refined pixel
-  float aa_threshold = 0.1f;                  // neighbour difference that triggers refinement
-  float min_path_weight = 0.0f;               // adaptive depth: 0 traces every bounce
-  std::string camera_name;                    // pick a glTF camera by name
-  std::optional<glm::vec3> eye, target;       // --look-at overrides
-  std::optional<float> fov_degrees;           // --fov override (vertical, degrees)
-  std::optional<PixelWindow> crop;            // --crop: render only this window of the image
-  CropOutput crop_output = CropOutput::Full;  // --crop-output full | window
-  std::vector<std::string> warnings;          // options that have no effect, said once
+  ShadingModel shading = ShadingModel::Phong;  // --shading phong | gltf
+  bool watertight = false;                     // --intersector watertight (default mt)
+  bool adaptive_aa = false;                    // --aa adaptive (default uniform --spp)
+  int aa_samples = 8;                          // extra samples of a refined pixel
+  float aa_threshold = 0.1f;                   // neighbour difference that triggers refinement
+  float min_path_weight = 0.0f;                // adaptive depth: 0 traces every bounce
+  std::string camera_name;                     // pick a glTF camera by name
+  std::optional<glm::vec3> eye, target;        // --look-at overrides
+  std::optional<float> fov_degrees;            // --fov override (vertical, degrees)
+  std::optional<PixelWindow> crop;             // --crop: render only this window of the image
+  CropOutput crop_output = CropOutput::Full;   // --crop-output full | window
+  std::vector<std::string> warnings;           // options that have no effect, said once
   // Animation (docs/animation.md): one time (--time), or frames first..last at
   // frame / fps seconds (--frames, --fps) into -o and --aov paths that are frame patterns
   // (frame_sequence.h); neither: the scene's still pose, as written.

@@ -1,4 +1,4 @@
-// Primary rays with the pinned camera convention (README "Camera convention"): pixel
+// Primary rays with the pinned camera convention (docs/camera.md): pixel
 // (i, j), i the column from the left, j the row from the top, camera-space direction
 // normalize(((2(i+0.5)/W - 1) tan(yfov/2) W/H, (1 - 2(j+0.5)/H) tan(yfov/2), -1)), to
 // world by the camera's world matrix; origin the camera's world position.

@@ -94,6 +94,7 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, Intersector& inters
       camera_(camera),
       intersector_(intersector),
       settings_(settings),
+      surface_textures_(scene),
       output_window_(settings.crop.orWholeImage(settings.width, settings.height)),
       film_window_(settings.adaptive_aa
                        ? grownInside(output_window_, settings.width, settings.height)
@@ -108,6 +109,12 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, Intersector& inters
   shading_triangles_ = makeShadingTriangles(scene, geometric_normals_);
   lights_ = scene.has_lights ? scene.lights : defaultLights(camera);
   for (const Material& m : scene.materials) material_terms_.push_back(surfaceTerms(m));
+  // One pixel's width: at the camera for an orthographic camera, per unit distance else.
+  const float rows = float(std::max(1, settings.height));
+  if (camera.orthographic)
+    cone_origin_ = 2.0f * camera.ymag / rows;
+  else
+    cone_spread_ = 2.0f * std::tan(0.5f * camera.yfov) / rows;
 }
 
 void Renderer::traceInBatches(const std::vector<GrRay>& rays, std::vector<GrHit>& hits,
@@ -202,6 +209,8 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     a.depth.assign(pixels, -1.0f);
     a.primid.assign(pixels, -1.0f);
     a.normal.assign(pixels * 3, 0.0f);
+    a.shading_normal.assign(pixels * 3, 0.0f);
+    a.albedo.assign(pixels * 3, 0.0f);
     a.tests.assign(diag ? pixels : 0, 0.0f);
     a.pe.assign(diag ? pixels : 0, -1.0f);
     a.list_length.assign(diag ? pixels : 0, 0.0f);
@@ -256,7 +265,8 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     PrimaryAovs& a = frame.aovs;
     for (std::vector<float>* one : {&a.depth, &a.primid, &a.tests, &a.pe, &a.list_length})
       keepWindow(*one, win, out, 1);
-    keepWindow(a.normal, win, out, 3);
+    for (std::vector<float>* three : {&a.normal, &a.shading_normal, &a.albedo})
+      keepWindow(*three, win, out, 3);
   }
   frame.times.frame_ms = frame_clock.ms();
 }
@@ -375,7 +385,7 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
     else
       traceBatched(*rays, HitMode::Closest, hits, diag, trace_ms);
     if (first && aov_pass && (settings_.want_aovs || settings_.want_diagnostics))
-      fillPrimaryAovs(frame.aovs, hits, diagnostics, spp);
+      fillPrimaryAovs(frame.aovs, *rays, hits, diagnostics, spp);
     shadow_total += shadeGeneration(depth, *rays, paths, primary, shadow_total, frame);
     depths = depth + 1;
     rays = &generations_[depth + 1].rays;
@@ -422,16 +432,36 @@ void Renderer::addPassRadiance(int depths, PrimaryPaths primary) {
   }
 }
 
-void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrHit>& hits,
-                               const RayDiagnostics& diagnostics, int spp) {
+void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrRay>& rays,
+                               const std::vector<GrHit>& hits, const RayDiagnostics& diagnostics,
+                               int spp) {
   const bool diag = settings_.want_diagnostics;
-  for (size_t k = 0; k < window_pixels_.size(); ++k) {
-    size_t p = size_t(window_pixels_[k]), r = k * spp;  // sample 0 of the pixel
+  const ShadingTriangle* smooth_triangles =
+      shading_triangles_.empty() ? nullptr : shading_triangles_.data();
+#pragma omp parallel for schedule(static)
+  for (long long k = 0; k < (long long)window_pixels_.size(); ++k) {
+    size_t p = size_t(window_pixels_[k]), r = size_t(k) * spp;  // sample 0 of the pixel
     const GrHit& hit = hits[r];
     if (hit.prim >= 0) {
       a.depth[p] = hit.t;
       a.primid[p] = float(hit.prim);
       for (int c = 0; c < 3; ++c) a.normal[3 * p + c] = geometric_normals_[hit.prim][c];
+      const GrRay& ray = rays[r];
+      const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim,
+                                        ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
+      const int material = scene_.material_of[hit.prim];
+      const glm::vec3 d(ray.dx, ray.dy, ray.dz);
+      const glm::vec3 n = mappedNormal(h, hit, d, cone_origin_);
+      const glm::vec3 albedo = surface_textures_.varies(material)
+                                   ? surface_textures_
+                                         .at(hit.prim, glm::vec3(h.px, h.py, h.pz),
+                                             coneWidth(cone_origin_, hit.t), glm::dot(n, d))
+                                         .base_color
+                                   : scene_.materials[material].base_color;
+      for (int c = 0; c < 3; ++c) {
+        a.shading_normal[3 * p + c] = n[c];
+        a.albedo[3 * p + c] = albedo[c];
+      }
     }
     if (diag) {
       a.tests[p] = float(diagnostics.tests[r]);
@@ -439,6 +469,23 @@ void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrHit>& hits,
       a.list_length[p] = float(diagnostics.list_length[r]);
     }
   }
+}
+
+glm::vec3 Renderer::mappedNormal(const HitSurface& h, const GrHit& hit, const glm::vec3& d,
+                                 float cone) const {
+  const glm::vec3 n(h.nx, h.ny, h.nz);
+  if (!surface_textures_.hasNormalMap(scene_.material_of[hit.prim])) return n;
+  return surface_textures_.mappedNormal(hit.prim, glm::vec3(h.px, h.py, h.pz), n, h.backface,
+                                        coneWidth(cone, hit.t), glm::dot(n, d));
+}
+
+void Renderer::applyNormalMap(SurfaceLanes& lanes, int k, float cone) const {
+  const glm::vec3 n(lanes.nx[k], lanes.ny[k], lanes.nz[k]);
+  const glm::vec3 d(lanes.dx[k], lanes.dy[k], lanes.dz[k]);
+  const glm::vec3 mapped = surface_textures_.mappedNormal(
+      lanes.tri[k], glm::vec3(lanes.px[k], lanes.py[k], lanes.pz[k]), n, lanes.backface[k] != 0,
+      coneWidth(cone, lanes.t[k]), glm::dot(n, d));
+  lanes.nx[k] = mapped.x, lanes.ny[k] = mapped.y, lanes.nz[k] = mapped.z;
 }
 
 bool Renderer::worthTracing(const glm::vec3& weight) const {
@@ -478,9 +525,16 @@ size_t Renderer::shadeHeadlight(int depth, const std::vector<GrRay>& rays, Prima
       const GrRay& ray = rays[i];
       const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim,
                                         ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
-      const glm::vec3& base = scene_.materials[scene_.material_of[hit.prim]].base_color;
-      value = weight * base *
-              std::fabs(glm::dot(glm::vec3(h.nx, h.ny, h.nz), glm::vec3(ray.dx, ray.dy, ray.dz)));
+      const int material = scene_.material_of[hit.prim];
+      const glm::vec3 d(ray.dx, ray.dy, ray.dz);
+      const glm::vec3 n = mappedNormal(h, hit, d, cone_origin_);
+      const glm::vec3 base = surface_textures_.varies(material)
+                                 ? surface_textures_
+                                       .at(hit.prim, glm::vec3(h.px, h.py, h.pz),
+                                           coneWidth(cone_origin_, hit.t), glm::dot(n, d))
+                                       .base_color
+                                 : scene_.materials[material].base_color;
+      value = weight * base * std::fabs(glm::dot(n, d));
     }
     if (into_pixels)
       radiance_[window_pixels_[i]] += value;
@@ -540,7 +594,7 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
         const size_t i = paths || !primary.order ? j : pixel_index * spp + sample;
         const PathRay path = paths ? (*paths)[i]
                                    : PathRay{window_pixels_[pixel_index], glm::vec3(primary.weight),
-                                             RayKind::Primary};
+                                             RayKind::Primary, cone_origin_};
         sample = sample + 1 == spp ? 0 : sample + 1;
         position += sample == 0;
         const GrHit& hit = g.hits[i];
@@ -564,6 +618,9 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
         lanes.t[k] = lanes.t[0], lanes.tri[k] = lanes.tri[0];
       }
       computeSurfaces(smooth_triangles, geometric_normals_.data(), lanes);
+      for (int k = 0; k < count; ++k)  // normal maps turn the shading normal before the lights
+        if (surface_textures_.hasNormalMap(scene_.material_of[lanes.tri[k]]))
+          applyNormalMap(lanes, k, block_path[k].cone);
       for (size_t l = 0; l < lights_.size(); ++l)
         computeLightLanes(lights_[l], lanes, out.light_lanes[l]);
       for (int k = 0; k < count; ++k) {
@@ -572,18 +629,33 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
         const GrHit& hit = g.hits[i];
         glm::vec3 d(lanes.dx[k], lanes.dy[k], lanes.dz[k]);
         const int tri = hit.prim;
-        const Material& mat = scene_.materials[scene_.material_of[tri]];
-        const SurfaceTerms& terms = material_terms_[scene_.material_of[tri]];
+        const int material = scene_.material_of[tri];
+        const Material& mat = scene_.materials[material];
         glm::vec3 weight = path.weight;
         const glm::vec3 p(lanes.px[k], lanes.py[k], lanes.pz[k]);
         const glm::vec3 ng(lanes.gx[k], lanes.gy[k], lanes.gz[k]);
         const glm::vec3 n(lanes.nx[k], lanes.ny[k], lanes.nz[k]);
         const bool backface = lanes.backface[k];
+        // Textures and vertex colours: the material's values at this hit.
+        const float cone = coneWidth(path.cone, hit.t);
+        SurfaceTerms terms = material_terms_[material];
+        glm::vec3 base_color = mat.base_color, emissive = mat.emissive;
+        float metallic = mat.metallic, roughness = mat.roughness;
+        float ambient = settings_.ambient;
+        if (surface_textures_.varies(material)) {
+          const MaterialSample here = surface_textures_.at(tri, p, cone, glm::dot(n, d));
+          terms = surfaceTerms(mat, here.base_color, here.metallic, here.roughness);
+          base_color = here.base_color;
+          metallic = here.metallic;
+          roughness = here.roughness;
+          emissive = here.emissive;
+          ambient *= here.occlusion;
+        }
         // Beer-Lambert absorption inside a transmissive volume (KHR_materials_volume).
         if (backface && mat.transmission > 0.0f && mat.attenuation_distance > 0.0f)
           weight *= glm::pow(glm::max(mat.attenuation_color, glm::vec3(1e-6f)),
                              glm::vec3(hit.t / mat.attenuation_distance));
-        local[i] = weight * (mat.emissive + settings_.ambient * terms.diffuse);
+        local[i] = weight * (emissive + ambient * terms.diffuse);
         const glm::vec3 origin(lanes.ox[k], lanes.oy[k], lanes.oz[k]);
         // How far secondary origins leave the surface, and where shadow rays start.
         const float offset_distance = rayOffsetDistance(p, origin, settings_.ray_offset);
@@ -594,11 +666,17 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
           const glm::vec3 to_light(light.lx[k], light.ly[k], light.lz[k]);
           const glm::vec3 e(light.ex[k], light.ey[k], light.ez[k]);
           const float cos_theta = light.cos_theta[k];
-          glm::vec3 r = reflectDirection(-to_light, n);
-          float rv = std::max(0.0f, glm::dot(r, -d));
-          // pow(0, e) is 0 for the exponent (>= 1): no call for the half turned away.
-          const float highlight = rv > 0.0f ? std::pow(rv, terms.phong_exponent) : 0.0f;
-          glm::vec3 direct = terms.diffuse / kPi * e * cos_theta + terms.specular * e * highlight;
+          glm::vec3 direct;
+          if (settings_.shading == ShadingModel::Gltf) {
+            direct = gltfBrdf(base_color, metallic, roughness, n, -d, to_light, mat.transmission) *
+                     e * cos_theta;
+          } else {
+            glm::vec3 r = reflectDirection(-to_light, n);
+            float rv = std::max(0.0f, glm::dot(r, -d));
+            // pow(0, e) is 0 for the exponent (>= 1): no call for the half turned away.
+            const float highlight = rv > 0.0f ? std::pow(rv, terms.phong_exponent) : 0.0f;
+            direct = terms.diffuse / kPi * e * cos_theta + terms.specular * e * highlight;
+          }
           glm::vec3 contribution = weight * direct;
           if (glm::length(contribution) == 0.0f) continue;
           const size_t s = nextSlot(out.shadow_rays, out.shadows, out.shadow_count);
@@ -611,13 +689,13 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
           float eta = backface ? mat.ior : 1.0f / mat.ior;
           float f = fresnelDielectric(-glm::dot(d, n), eta);
           glm::vec3 t_dir;
-          glm::vec3 t_weight = weight * terms.transmission * (1.0f - f) * mat.base_color;
+          glm::vec3 t_weight = weight * terms.transmission * (1.0f - f) * base_color;
           if (f < 1.0f && refractDirection(d, n, eta, t_dir) && glm::dot(t_dir, ng) < 0.0f) {
             if (worthTracing(t_weight)) {
               const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
               out.rays[s] = makeRay(offsetRayOrigin(p, -ng, offset_distance, settings_.ray_offset),
                                     t_dir, kInf);
-              out.paths[s] = PathRay{path.pixel, t_weight, RayKind::Refraction};
+              out.paths[s] = PathRay{path.pixel, t_weight, RayKind::Refraction, cone};
             }
           } else {
             f = 1.0f;  // total internal reflection
@@ -629,7 +707,7 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
           if (glm::dot(r, ng) <= 0.0f) r = reflectDirection(d, ng);  // keep it above the surface
           const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
           out.rays[s] = makeRay(above, r, kInf);
-          out.paths[s] = PathRay{path.pixel, weight * reflect_weight, RayKind::Reflection};
+          out.paths[s] = PathRay{path.pixel, weight * reflect_weight, RayKind::Reflection, cone};
         }
       }
     }

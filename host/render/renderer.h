@@ -11,10 +11,12 @@
 #include <vector>
 
 #include "film.h"
+#include "gltf_brdf.h"
 #include "hit_surfaces.h"
 #include "intersector.h"
 #include "pixel_window.h"
 #include "scene.h"
+#include "surface_textures.h"
 #include "whitted_shading.h"
 
 namespace gridrt {
@@ -28,13 +30,14 @@ constexpr size_t kMaxPassRays = size_t(1) << 18;
 struct RenderSettings {
   int width = 640;
   int height = 480;
-  int spp = 1;                    // samples per pixel: jittered inside the pixel when > 1
-  int max_depth = 5;              // reflection/refraction bounces after the primary hit
-  bool primary_only = false;      // primary rays with headlight shading (the paper's measurement)
-  glm::vec3 background{0.0f};     // colour of rays that miss (black, as in the paper)
-  float ambient = 0.05f;          // ambient radiance factor: ambient * diffuse albedo, lit or not
-  RayOffset ray_offset;           // how secondary ray origins leave the surface
-  bool want_aovs = true;          // fill the depth / primid / normal AOVs of primary rays
+  int spp = 1;                 // samples per pixel: jittered inside the pixel when > 1
+  int max_depth = 5;           // reflection/refraction bounces after the primary hit
+  bool primary_only = false;   // primary rays with headlight shading (the paper's measurement)
+  glm::vec3 background{0.0f};  // colour of rays that miss (black, as in the paper)
+  float ambient = 0.05f;       // ambient radiance factor: ambient * diffuse albedo, lit or not
+  RayOffset ray_offset;        // how secondary ray origins leave the surface
+  ShadingModel shading = ShadingModel::Phong;  // punctual lights: Phong or the glTF BRDF
+  bool want_aovs = true;          // fill the depth / primid / normal / albedo AOVs of primary rays
   bool want_diagnostics = false;  // fill tests / PE / list-length AOVs of primary rays
   PixelWindow crop;  // render only these pixels (the film and AOVs hold the window alone)
   // Adaptive supersampling (--aa adaptive): centres first, then aa_samples jittered samples
@@ -57,12 +60,14 @@ struct RayCounts {
 
 // Primary-ray AOVs (sample 0 of each pixel).
 struct PrimaryAovs {
-  std::vector<float> depth;        // t of the primary hit (unit direction), -1 on a miss
-  std::vector<float> primid;       // global triangle index, -1 on a miss
-  std::vector<float> normal;       // geometric normal (xyz), 0 on a miss
-  std::vector<float> tests;        // ray-triangle tests of the primary ray
-  std::vector<float> pe;           // winning PE, -1 on a miss
-  std::vector<float> list_length;  // PEs in the traversal list
+  std::vector<float> depth;           // t of the primary hit (unit direction), -1 on a miss
+  std::vector<float> primid;          // global triangle index, -1 on a miss
+  std::vector<float> normal;          // geometric normal (xyz), 0 on a miss
+  std::vector<float> shading_normal;  // the normal shading used, facing the ray (xyz), 0 on a miss
+  std::vector<float> albedo;          // linear base colour: factor x texture x COLOR_0 (rgb)
+  std::vector<float> tests;           // ray-triangle tests of the primary ray
+  std::vector<float> pe;              // winning PE, -1 on a miss
+  std::vector<float> list_length;     // PEs in the traversal list
 };
 
 struct FrameTimes {
@@ -101,6 +106,7 @@ class Renderer {
     int pixel;
     glm::vec3 weight;  // throughput from the camera to this ray
     RayKind kind;
+    float cone = 0.0f;  // the ray cone's width at the ray's origin (texture level of detail)
   };
   struct ShadowRay {
     int pixel;
@@ -171,8 +177,16 @@ class Renderer {
   // light (so every pixel's sum is the same, bit for bit).
   void addPassRadiance(int depths, PrimaryPaths primary);
   // The AOVs of window_pixels_ (the arrays sized for the film by render).
-  void fillPrimaryAovs(PrimaryAovs& aovs, const std::vector<GrHit>& hits,
-                       const RayDiagnostics& diagnostics, int spp);
+  void fillPrimaryAovs(PrimaryAovs& aovs, const std::vector<GrRay>& rays,
+                       const std::vector<GrHit>& hits, const RayDiagnostics& diagnostics, int spp);
+  // The shading normal of hit surface h, turned by its material's normal map if it has one
+  // (d: the ray's direction; cone: its cone's width at its origin).
+  glm::vec3 mappedNormal(const HitSurface& h, const GrHit& hit, const glm::vec3& d,
+                         float cone) const;
+  // The same for lane k of `lanes`, written back into its shading normal.
+  void applyNormalMap(SurfaceLanes& lanes, int k, float cone) const;
+  // The width of a ray cone that left its origin `cone` wide after distance t.
+  float coneWidth(float cone, float t) const { return cone + cone_spread_ * t; }
   struct Spawned;
   // The chunks' rays (and their shadows or paths) one after the other, in chunk order,
   // copied on all cores to all_rays / all_extras from `offset` on (both grown if too
@@ -191,6 +205,10 @@ class Renderer {
   std::vector<ShadingTriangle> shading_triangles_;  // per triangle
   std::vector<Light> lights_;                       // the scene's, or the default light
   std::vector<SurfaceTerms> material_terms_;        // per material
+  SurfaceTextures surface_textures_;                // textures and vertex colours at hits
+  // Ray cones (surface_textures.h): a camera ray's width at the camera, and the angle a
+  // cone widens by per unit of distance (a pixel's; curvature ignored at bounces).
+  float cone_origin_ = 0.0f, cone_spread_ = 0.0f;
 
   // Rays one chunk of a generation spawns while shading; concatenated in chunk order
   // afterwards, so the order is the rays' whatever thread shaded which chunk.

@@ -8,21 +8,25 @@
 namespace gridrt {
 
 SurfaceTerms surfaceTerms(const Material& m) {
+  return surfaceTerms(m, m.base_color, m.metallic, m.roughness);
+}
+
+SurfaceTerms surfaceTerms(const Material& m, const glm::vec3& base_color, float metallic_factor,
+                          float roughness_factor) {
   SurfaceTerms s;
   float transmission = std::clamp(m.transmission, 0.0f, 1.0f);
-  float metallic = std::clamp(m.metallic, 0.0f, 1.0f);
-  float roughness = std::clamp(m.roughness, 0.0f, 1.0f);
+  float metallic = std::clamp(metallic_factor, 0.0f, 1.0f);
+  float roughness = std::clamp(roughness_factor, 0.0f, 1.0f);
   // A metal reflects its base colour: the smooth share (1 - roughness)^2 as a perfect
   // mirror, the rest, scattered too widely for a mirror ray to stand for it, as a Lambert
   // lobe tinted by the base colour (a rough metal shows its colour, not black).
   const float smooth = (1.0f - roughness) * (1.0f - roughness);
-  s.diffuse =
-      m.base_color * ((1.0f - metallic) * (1.0f - transmission) + metallic * (1.0f - smooth));
-  s.specular = glm::mix(glm::vec3(0.04f), m.base_color, metallic) * (1.0f - roughness);
+  s.diffuse = base_color * ((1.0f - metallic) * (1.0f - transmission) + metallic * (1.0f - smooth));
+  s.specular = glm::mix(glm::vec3(0.04f), base_color, metallic) * (1.0f - roughness);
   float alpha = roughness * roughness;
   s.phong_exponent =
       alpha > 0.0f ? std::clamp(2.0f / (alpha * alpha) - 2.0f, 1.0f, 10000.0f) : 10000.0f;
-  s.mirror = m.base_color * metallic * (1.0f - roughness) * (1.0f - roughness);
+  s.mirror = base_color * metallic * (1.0f - roughness) * (1.0f - roughness);
   s.transmission = transmission * (1.0f - metallic);
   return s;
 }

@@ -1,4 +1,4 @@
-// The Whitted/Phong terms of a surface and a light (README "Material mapping"), as pure
+// The Whitted/Phong terms of a surface and a light (docs/gltf.md "Material mapping"), as pure
 // functions the wavefront renderer calls per hit.
 #pragma once
 #include <algorithm>
@@ -23,6 +23,10 @@ struct SurfaceTerms {
 };
 
 SurfaceTerms surfaceTerms(const Material& m);
+// The same with the base colour, metallic and roughness at a hit (textures, vertex
+// colours) in place of the material's factors.
+SurfaceTerms surfaceTerms(const Material& m, const glm::vec3& base_color, float metallic,
+                          float roughness);
 
 // Irradiance (per unit area facing the light) that `light` delivers at `p`, the unit
 // direction towards the light and its distance (infinite for a directional light).

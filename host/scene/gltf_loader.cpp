@@ -22,6 +22,8 @@
 
 #include "errors.h"
 #include "gltf_accessors.h"
+#include "gltf_textures.h"
+#include "gltf_vertex_attributes.h"
 
 namespace gridrt {
 namespace {
@@ -145,12 +147,6 @@ bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigne
   return false;
 }
 
-// Textures are not used by the renderer; stb is not available to decode them anyway.
-bool ignoreImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                 const unsigned char*, int, void*) {
-  return true;
-}
-
 // ---------------------------------------------------------------------------------------------
 // Checks on the JSON text before tinygltf sees it
 
@@ -266,7 +262,7 @@ tinygltf::Model parseModel(const unsigned char* data, size_t size, const std::st
   }
 
   tinygltf::TinyGLTF parser;
-  parser.SetImageLoader(ignoreImage, nullptr);
+  parser.SetImageLoader(gltf::keepEncodedImage, nullptr);
   parser.SetFsCallbacks({guardedFileExists, identityPath, guardedReadFile, refuseWrite, &guard});
 
   tinygltf::Model model;
@@ -444,18 +440,6 @@ const tinygltf::Value& extension(const tinygltf::ExtensionMap& map, const char* 
   return it == map.end() ? kNone : it->second;
 }
 
-bool usesTexture(const tinygltf::Material& m) {
-  if (m.pbrMetallicRoughness.baseColorTexture.index >= 0 ||
-      m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || m.normalTexture.index >= 0 ||
-      m.occlusionTexture.index >= 0 || m.emissiveTexture.index >= 0)
-    return true;
-  // Material extensions name their textures "...Texture" (transmissionTexture, ...).
-  for (const auto& [name, value] : m.extensions)
-    for (const std::string& key : value.Keys())
-      if (key.size() >= 7 && key.compare(key.size() - 7, 7, "Texture") == 0) return true;
-  return false;
-}
-
 Material convertMaterial(const tinygltf::Material& m, size_t index) {
   Material out;
   out.name = m.name.empty() ? "material " + std::to_string(index) : m.name;
@@ -563,6 +547,7 @@ class SceneBuilder {
     traverse(rootNodes());
     if (scene_.positions.empty()) fail(label_, "the scene has no triangles");
     finishNormals();
+    gltf::finishVertexAttributes(scene_);
     chooseCamera();
     scene_.has_lights = !scene_.lights.empty();
     summariseWarnings();
@@ -581,12 +566,12 @@ class SceneBuilder {
   }
 
   void convertMaterials() {
-    bool textured = false;
+    gltf::convertTextures(model_, label_, scene_);
     for (size_t i = 0; i < model_.materials.size(); ++i) {
       scene_.materials.push_back(convertMaterial(model_.materials[i], i));
-      textured = textured || usesTexture(model_.materials[i]);
+      gltf::convertMaterialTextures(model_, model_.materials[i], i, label_, scene_.materials.back(),
+                                    scene_.warnings);
     }
-    if (textured) scene_.warnings.push_back("textures are ignored");
   }
 
   std::vector<int> rootNodes() const {
@@ -882,7 +867,8 @@ class SceneBuilder {
       normals.emplace(vertex_count);
       for (size_t i = 0; i < vertex_count; ++i) (*normals)[i] = normal_data.vec3(i);
     }
-    vertex_colours_ignored_ = vertex_colours_ignored_ || attribute(prim, "COLOR_0") >= 0;
+    const gltf::VertexAttributes extras =
+        gltf::readVertexAttributes(model_, prim, vertex_count, quantized_, where, label_);
     applyMorphTargets(prim, morph_weights, "POSITION", positions, where);
     if (normals) applyMorphTargets(prim, morph_weights, "NORMAL", *normals, where);
     const std::vector<uint32_t> indices = triangleIndices(prim, vertex_count, where);
@@ -922,6 +908,12 @@ class SceneBuilder {
       // The glTF spec: a mirroring transform turns the winding clockwise; swap it back.
       if (mirrored) std::swap(p[1], p[2]), std::swap(n[1], n[2]);
       const glm::vec3 face = geometricNormal(p[0], p[1], p[2]);
+      uint32_t stored[3] = {indices[t], indices[t + 1], indices[t + 2]};
+      if (mirrored) std::swap(stored[1], stored[2]);
+      glm::vec4 tangents[3];
+      for (int k = 0; k < 3; ++k)
+        tangents[k] = gltf::worldTangent(extras, stored[k], skinned ? skin[stored[k]] : world);
+      gltf::appendTriangleAttributes(extras, stored, tangents, scene_.material_of.size(), scene_);
       for (int k = 0; k < 3; ++k) {
         scene_.positions.push_back(p[k]);
         // Unusable file normals (zero, NaN) fall back to the face normal.
@@ -1007,7 +999,6 @@ class SceneBuilder {
   }
 
   void summariseWarnings() {
-    if (vertex_colours_ignored_) scene_.warnings.push_back("vertex colours (COLOR_0) are ignored");
     if (scene_.skipped_primitives > 0)
       scene_.warnings.push_back(std::to_string(scene_.skipped_primitives) +
                                 " primitive(s) skipped (points, lines, strips, fans or no "
@@ -1028,7 +1019,6 @@ class SceneBuilder {
   std::vector<bool> has_normals_;  // per triangle: from a primitive with NORMAL
   std::vector<CameraNode> camera_nodes_;
   int default_material_ = -1;
-  bool vertex_colours_ignored_ = false;  // some primitive has COLOR_0
   // Per node: its world matrix, once the traversal has reached it.
   std::vector<std::optional<glm::dmat4>> world_of_node_;
   // The file declares KHR_mesh_quantization: integer POSITION and NORMAL are allowed.

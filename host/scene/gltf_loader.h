@@ -21,7 +21,9 @@
 //   JOINTS_n/WEIGHTS_n normalised to sum 1, and ignores its own node's transform (glTF).
 // - Triangles with a NaN/Inf world coordinate are dropped (Scene::dropped_degenerate).
 // - Materials: Scene::materials[i] is glTF material i; a "default" Material{} is appended once
-//   if some primitive has no material. Textures are ignored (never decoded), with a warning.
+//   if some primitive has no material. Images, samplers, textures and the material's
+//   texture slots as gltf_textures.h says: images kept encoded, decoded by host/texture.
+// - TEXCOORD_0/1 and COLOR_0 per triangle vertex (gltf_vertex_attributes.h).
 // - Camera: the first camera node in traversal order (or the one named by LoadOptions); its
 //   world matrix keeps the translation, with the rotation part orthonormalised (scale and
 //   shear removed) so that it is a pure camera-to-world rigid transform.

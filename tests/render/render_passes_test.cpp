@@ -57,6 +57,9 @@ class RenderPasses : public test::DefaultSceneTest {
     EXPECT_EQ(differing(want.aovs.depth, got.aovs.depth), 0u) << what << ": depth";
     EXPECT_EQ(differing(want.aovs.primid, got.aovs.primid), 0u) << what << ": primid";
     EXPECT_EQ(differing(want.aovs.normal, got.aovs.normal), 0u) << what << ": normal";
+    EXPECT_EQ(differing(want.aovs.shading_normal, got.aovs.shading_normal), 0u)
+        << what << ": shading normal";
+    EXPECT_EQ(differing(want.aovs.albedo, got.aovs.albedo), 0u) << what << ": albedo";
     EXPECT_EQ(differing(want.aovs.tests, got.aovs.tests), 0u) << what << ": tests";
     EXPECT_EQ(differing(want.aovs.pe, got.aovs.pe), 0u) << what << ": pe";
     EXPECT_EQ(differing(want.aovs.list_length, got.aovs.list_length), 0u) << what << ": listlen";

@@ -556,17 +556,21 @@ TEST(GltfLoader, MapsMaterialFactorsAndExtensions) {
   EXPECT_EQ(s.materials[2].name, "default");
 }
 
-TEST(GltfLoader, WarnsOnceThatTexturesAreIgnored) {
+TEST(GltfLoader, KeepsTextureSlotsAndImagesEncoded) {
   GltfBuilder b;
   int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
   const std::string extra =
       "\"images\":[{\"uri\":\"data:image/png;base64,iVBORw0KGgo=\"}],"
       "\"textures\":[{\"source\":0}],"
-      "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}},"
-      "{\"normalTexture\":{\"index\":0}}]";
+      "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}},"
+      "\"normalTexture\":{\"index\":0}},{\"normalTexture\":{\"index\":0}}]";
   Scene s =
       loadJson(b.json(singleMesh(primitive(tri, -1, 0) + "," + primitive(tri, -1, 1), extra)));
-  EXPECT_EQ(std::count(s.warnings.begin(), s.warnings.end(), "textures are ignored"), 1);
+  EXPECT_EQ(s.materials[0].base_color_texture.texture, 0);
+  ASSERT_EQ(s.images.size(), 1u);
+  EXPECT_EQ(s.images[0].encoded.size(), 8u);  // the PNG signature, kept encoded
+  EXPECT_EQ(s.materials[1].normal_texture.texture, 0);
+  EXPECT_TRUE(s.warnings.empty());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -759,7 +763,7 @@ TEST(GltfLoader, SkinnedMeshFollowsItsJoints) {
   expectNear(scene.positions[2], {0, 0.5f, 1.5f});
 }
 
-TEST(GltfLoader, WarnsThatVertexColoursAreIgnored) {
+TEST(GltfLoader, ReadsVertexColours) {
   GltfBuilder b;
   const int pos = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
   const int colour = b.vec3({1, 0, 0, 0, 1, 0, 0, 0, 1});
@@ -767,9 +771,8 @@ TEST(GltfLoader, WarnsThatVertexColoursAreIgnored) {
                            ",\"COLOR_0\":" + std::to_string(colour) + "}}";
   const Scene scene = loadJson(b.json(singleMesh(prim)));
   ASSERT_EQ(scene.triangleCount(), 1u);
-  EXPECT_NE(std::find(scene.warnings.begin(), scene.warnings.end(),
-                      "vertex colours (COLOR_0) are ignored"),
-            scene.warnings.end());
+  EXPECT_EQ(scene.colors, (std::vector<glm::vec4>{{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}}));
+  EXPECT_TRUE(scene.warnings.empty());
 }
 
 TEST(GltfLoader, RejectsSkinJointOutOfRange) {

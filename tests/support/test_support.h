@@ -19,6 +19,9 @@ bool fileExists(const std::string& path);
 std::string freshDir(const std::string& name);
 std::vector<std::string> listDir(const std::string& dir);
 
+// `bytes` in base64 (RFC 4648, with padding), for data URIs in glTF documents made by tests.
+std::string base64(const std::string& bytes);
+
 // Rays where `got` differs from `want`: another primitive, or another t bit for bit.
 // Reports the first difference as a test failure naming `label`.
 size_t hitMismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& got,
