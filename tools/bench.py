@@ -387,7 +387,7 @@ def peer_row(label, s, **extra):
 # gridrt's variants of a target.
 GRIDRT_VARIANTS = [("gridrt", []), ("gridrt --pe-interrupt", ["--pe-interrupt"]),
                    ("dda", ["--accel", "dda"])]
-# The variant every other one is compared with, round by round (the issue's yardstick).
+# The variant every other one is compared with, round by round (the targets' yardstick).
 YARDSTICK = "embree 1-ray"
 
 
