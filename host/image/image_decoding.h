@@ -13,10 +13,11 @@ namespace gridrt {
 constexpr long long kMaxDecodedPixels = 1LL << 26;
 
 // Decodes `bytes` (the first subimage) into float pixels: 8- and 16-bit values to [0, 1]
-// as stored, no colour conversion, colours not multiplied by alpha (as glTF stores them). The format comes from the bytes' signature (PNG,
-// JPEG), else from `format_hint` (a MIME type such as "image/png" or a file name with an
-// extension). Throws RenderError with a one-line message starting with `label` when the
-// bytes cannot be decoded or the image is larger than kMaxDecodedPixels.
+// as stored, no colour conversion, colours not multiplied by alpha (as glTF stores them). The
+// format comes from the bytes' signature (PNG, JPEG), else from `format_hint` (a MIME type such as
+// "image/png" or a file name with an extension). Throws RenderError with a one-line message
+// starting with `label` when the bytes cannot be decoded or the image is larger than
+// kMaxDecodedPixels.
 ImageData decodeImage(const std::vector<unsigned char>& bytes, const std::string& format_hint,
                       const std::string& label);
 

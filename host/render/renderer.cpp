@@ -438,29 +438,17 @@ void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrRay>& rays,
   const bool diag = settings_.want_diagnostics;
   const ShadingTriangle* smooth_triangles =
       shading_triangles_.empty() ? nullptr : shading_triangles_.data();
-#pragma omp parallel for schedule(static)
-  for (long long k = 0; k < (long long)window_pixels_.size(); ++k) {
+  parallelFor(0LL, (long long)(window_pixels_.size()), [&](long long k) {
     size_t p = size_t(window_pixels_[k]), r = size_t(k) * spp;  // sample 0 of the pixel
     const GrHit& hit = hits[r];
     if (hit.prim >= 0) {
       a.depth[p] = hit.t;
       a.primid[p] = float(hit.prim);
       for (int c = 0; c < 3; ++c) a.normal[3 * p + c] = geometric_normals_[hit.prim][c];
-      const GrRay& ray = rays[r];
-      const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim,
-                                        ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
-      const int material = scene_.material_of[hit.prim];
-      const glm::vec3 d(ray.dx, ray.dy, ray.dz);
-      const glm::vec3 n = mappedNormal(h, hit, d, cone_origin_);
-      const glm::vec3 albedo = surface_textures_.varies(material)
-                                   ? surface_textures_
-                                         .at(hit.prim, glm::vec3(h.px, h.py, h.pz),
-                                             coneWidth(cone_origin_, hit.t), glm::dot(n, d))
-                                         .base_color
-                                   : scene_.materials[material].base_color;
+      const PrimarySurface surface = primarySurface(hit, rays[r], smooth_triangles);
       for (int c = 0; c < 3; ++c) {
-        a.shading_normal[3 * p + c] = n[c];
-        a.albedo[3 * p + c] = albedo[c];
+        a.shading_normal[3 * p + c] = surface.normal[c];
+        a.albedo[3 * p + c] = surface.base_color[c];
       }
     }
     if (diag) {
@@ -468,7 +456,23 @@ void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrRay>& rays,
       a.pe[p] = float(diagnostics.winning_pe[r]);
       a.list_length[p] = float(diagnostics.list_length[r]);
     }
-  }
+  });
+}
+
+Renderer::PrimarySurface Renderer::primarySurface(const GrHit& hit, const GrRay& ray,
+                                                  const ShadingTriangle* smooth_triangles) const {
+  const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim, ray.ox,
+                                    ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
+  const int material = scene_.material_of[hit.prim];
+  const glm::vec3 d(ray.dx, ray.dy, ray.dz);
+  const glm::vec3 n = mappedNormal(h, hit, d, cone_origin_);
+  const glm::vec3 base = surface_textures_.varies(material)
+                             ? surface_textures_
+                                   .at(hit.prim, glm::vec3(h.px, h.py, h.pz),
+                                       coneWidth(cone_origin_, hit.t), glm::dot(n, d))
+                                   .base_color
+                             : scene_.materials[material].base_color;
+  return {n, base};
 }
 
 glm::vec3 Renderer::mappedNormal(const HitSurface& h, const GrHit& hit, const glm::vec3& d,
@@ -523,18 +527,9 @@ size_t Renderer::shadeHeadlight(int depth, const std::vector<GrRay>& rays, Prima
       value = weight * settings_.background;
     } else {
       const GrRay& ray = rays[i];
-      const HitSurface h = surfaceOfHit(smooth_triangles, geometric_normals_.data(), hit.prim,
-                                        ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, hit.t);
-      const int material = scene_.material_of[hit.prim];
-      const glm::vec3 d(ray.dx, ray.dy, ray.dz);
-      const glm::vec3 n = mappedNormal(h, hit, d, cone_origin_);
-      const glm::vec3 base = surface_textures_.varies(material)
-                                 ? surface_textures_
-                                       .at(hit.prim, glm::vec3(h.px, h.py, h.pz),
-                                           coneWidth(cone_origin_, hit.t), glm::dot(n, d))
-                                       .base_color
-                                 : scene_.materials[material].base_color;
-      value = weight * base * std::fabs(glm::dot(n, d));
+      const PrimarySurface surface = primarySurface(hit, ray, smooth_triangles);
+      value = weight * surface.base_color *
+              std::fabs(glm::dot(surface.normal, glm::vec3(ray.dx, ray.dy, ray.dz)));
     }
     if (into_pixels)
       radiance_[window_pixels_[i]] += value;

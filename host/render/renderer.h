@@ -183,6 +183,13 @@ class Renderer {
   // (d: the ray's direction; cone: its cone's width at its origin).
   glm::vec3 mappedNormal(const HitSurface& h, const GrHit& hit, const glm::vec3& d,
                          float cone) const;
+  // A camera ray's hit: its shading normal (normal-mapped) and base colour (factor times
+  // texture times vertex colour), as the AOVs and the headlight shading take them.
+  struct PrimarySurface {
+    glm::vec3 normal, base_color;
+  };
+  PrimarySurface primarySurface(const GrHit& hit, const GrRay& ray,
+                                const ShadingTriangle* smooth_triangles) const;
   // The same for lane k of `lanes`, written back into its shading normal.
   void applyNormalMap(SurfaceLanes& lanes, int k, float cone) const;
   // The width of a ray cone that left its origin `cone` wide after distance t.

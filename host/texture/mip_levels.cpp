@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "parallel_loops.h"
+
 namespace gridrt {
 namespace {
 
@@ -19,8 +21,7 @@ TexelLevel halved(const TexelLevel& from) {
   to.width = std::max(1, from.width / 2);
   to.height = std::max(1, from.height / 2);
   to.texels.resize(size_t(to.width) * size_t(to.height));
-#pragma omp parallel for schedule(static)
-  for (int y = 0; y < to.height; ++y) {
+  parallelFor(int(0), int(to.height), [&](int y) {
     int y0, y1;
     span(y, to.height, from.height, y0, y1);
     for (int x = 0; x < to.width; ++x) {
@@ -32,7 +33,7 @@ TexelLevel halved(const TexelLevel& from) {
           sum += from.texels[size_t(j) * size_t(from.width) + size_t(i)];
       to.texels[size_t(y) * size_t(to.width) + size_t(x)] = sum / float((y1 - y0) * (x1 - x0));
     }
-  }
+  });
   return to;
 }
 

@@ -5,6 +5,7 @@
 #include "errors.h"
 #include "image_decoding.h"
 #include "mip_levels.h"
+#include "parallel_loops.h"
 
 namespace gridrt {
 namespace {
@@ -40,8 +41,7 @@ TexelLevel texelsOf(const ImageData& image, bool srgb) {
   level.texels.resize(size_t(image.width) * size_t(image.height));
   const int channels = image.channels;
   const long long count = (long long)level.texels.size();
-#pragma omp parallel for schedule(static)
-  for (long long t = 0; t < count; ++t) {
+  parallelFor(0LL, (long long)(count), [&](long long t) {
     const float* px = &image.pixels[size_t(t) * size_t(channels)];
     glm::vec4 v(1.0f);
     if (channels <= 2) {
@@ -52,7 +52,7 @@ TexelLevel texelsOf(const ImageData& image, bool srgb) {
     if (srgb)
       for (int c = 0; c < 3; ++c) v[c] = srgbToLinear(v[c]);
     level.texels[size_t(t)] = v;
-  }
+  });
   return level;
 }
 
