@@ -30,6 +30,7 @@
 #include "test_support.h"
 
 namespace fs = std::filesystem;
+using gridrt::test::base64;
 using gridrt::test::gridrtBinary;
 using gridrt::test::modelScene;
 using gridrt::test::tempPath;
@@ -111,33 +112,6 @@ RunResult expectFailure(const std::string& name, std::vector<std::string> args, 
 
 // ---------------------------------------------------------------------------------------------
 // glTF fixtures
-
-std::string base64(const std::string& bytes) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  size_t i = 0;
-  for (; i + 2 < bytes.size(); i += 3) {
-    uint32_t v = uint32_t(uint8_t(bytes[i])) << 16 | uint32_t(uint8_t(bytes[i + 1])) << 8 |
-                 uint32_t(uint8_t(bytes[i + 2]));
-    out += table[v >> 18 & 63];
-    out += table[v >> 12 & 63];
-    out += table[v >> 6 & 63];
-    out += table[v & 63];
-  }
-  if (i + 1 == bytes.size()) {
-    uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
-    out += table[v >> 18 & 63];
-    out += table[v >> 12 & 63];
-    out += "==";
-  } else if (i + 2 == bytes.size()) {
-    uint32_t v = uint32_t(uint8_t(bytes[i])) << 16 | uint32_t(uint8_t(bytes[i + 1])) << 8;
-    out += table[v >> 18 & 63];
-    out += table[v >> 12 & 63];
-    out += table[v >> 6 & 63];
-    out += '=';
-  }
-  return out;
-}
 
 template <typename T>
 std::string rawBytes(const std::vector<T>& values) {
