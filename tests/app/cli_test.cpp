@@ -31,6 +31,7 @@
 
 namespace fs = std::filesystem;
 using gridrt::test::base64;
+using gridrt::test::bytesOf;
 using gridrt::test::gridrtBinary;
 using gridrt::test::modelScene;
 using gridrt::test::tempPath;
@@ -113,11 +114,6 @@ RunResult expectFailure(const std::string& name, std::vector<std::string> args, 
 // ---------------------------------------------------------------------------------------------
 // glTF fixtures
 
-template <typename T>
-std::string rawBytes(const std::vector<T>& values) {
-  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
-}
-
 struct MeshSpec {
   std::vector<float> positions;   // xyz per vertex
   std::vector<uint16_t> indices;  // empty: non-indexed
@@ -128,8 +124,8 @@ struct MeshSpec {
 // A one-mesh, one-node glTF with its buffer as a base64 data URI (camera and lights are the
 // renderer's defaults).
 std::string makeGltf(const MeshSpec& m) {
-  std::string pos = rawBytes(m.positions);
-  std::string idx = rawBytes(m.indices);
+  std::string pos = bytesOf(m.positions);
+  std::string idx = bytesOf(m.indices);
   std::string data = pos + idx;
   while (data.size() % 4) data.push_back('\0');
   const size_t vertices = m.positions.size() / 3;

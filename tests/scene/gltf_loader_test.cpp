@@ -23,14 +23,10 @@ namespace gridrt {
 namespace {
 
 using test::base64;
+using test::bytesOf;
 
 constexpr int kUByte = 5121, kUShort = 5123, kUInt = 5125, kFloat = 5126;
 constexpr float kTol = 1e-5f;
-
-template <typename T>
-std::string rawBytes(const std::vector<T>& values) {
-  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
-}
 
 // Builds a glTF document whose single buffer is embedded as a data URI. Each add* call
 // appends a bufferView (4-byte aligned) and an accessor over it and returns the accessor.
@@ -62,16 +58,16 @@ class GltfBuilder {
     return int(accessors_.size() - 1);
   }
   int vec3(const std::vector<float>& xyz) {
-    return addAccessor(rawBytes(xyz), kFloat, xyz.size() / 3, "VEC3");
+    return addAccessor(bytesOf(xyz), kFloat, xyz.size() / 3, "VEC3");
   }
   int indicesU8(const std::vector<uint8_t>& i) {
-    return addAccessor(rawBytes(i), kUByte, i.size(), "SCALAR");
+    return addAccessor(bytesOf(i), kUByte, i.size(), "SCALAR");
   }
   int indicesU16(const std::vector<uint16_t>& i) {
-    return addAccessor(rawBytes(i), kUShort, i.size(), "SCALAR");
+    return addAccessor(bytesOf(i), kUShort, i.size(), "SCALAR");
   }
   int indicesU32(const std::vector<uint32_t>& i) {
-    return addAccessor(rawBytes(i), kUInt, i.size(), "SCALAR");
+    return addAccessor(bytesOf(i), kUInt, i.size(), "SCALAR");
   }
 
   // `rest`: the remaining top-level members ("nodes", "meshes", ...) without braces.
@@ -216,9 +212,9 @@ TEST(GltfLoader, ReadsInterleavedPositionsAndNormalsWithStride) {
   GltfBuilder b;
   // Per vertex: position xyz, normal xyz (24-byte stride); normals deliberately not unit.
   std::vector<float> interleaved = {0, 0, 0, 0, 0, 2, 1, 0, 0, 0, 0, 3, 0, 1, 0, 0, 0, 4};
-  int pos = b.addAccessor(rawBytes(interleaved), kFloat, 3, "VEC3", 24, 0);
+  int pos = b.addAccessor(bytesOf(interleaved), kFloat, 3, "VEC3", 24, 0);
   // The normal accessor shares the bytes through its own view at byteOffset 12.
-  int nrm = b.addAccessor(rawBytes(interleaved), kFloat, 3, "VEC3", 24, 12);
+  int nrm = b.addAccessor(bytesOf(interleaved), kFloat, 3, "VEC3", 24, 12);
   Scene s = loadJson(b.json(singleMesh(primitive(pos, -1, -1, 4, nrm))));
   ASSERT_EQ(s.triangleCount(), 1u);
   expectNear(s.positions[1], {1, 0, 0});
@@ -569,7 +565,7 @@ TEST(GltfLoader, RejectsIndexOutOfRange) {
 TEST(GltfLoader, RejectsAccessorBeyondItsBuffer) {
   GltfBuilder b;
   // 4 vertices claimed over 3 vertices' worth of bytes.
-  int pos = b.addAccessor(rawBytes(std::vector<float>(9, 0.0f)), kFloat, 4, "VEC3");
+  int pos = b.addAccessor(bytesOf(std::vector<float>(9, 0.0f)), kFloat, 4, "VEC3");
   EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos)))),
                      "test.gltf: accessor 0: 4 elements at offset 0 with stride 12 exceed "
                      "bufferView 0 of 36 bytes");
@@ -577,7 +573,7 @@ TEST(GltfLoader, RejectsAccessorBeyondItsBuffer) {
 
 TEST(GltfLoader, RejectsStrideSmallerThanElement) {
   GltfBuilder b;
-  int pos = b.addAccessor(rawBytes(std::vector<float>(9, 0.0f)), kFloat, 3, "VEC3", 8);
+  int pos = b.addAccessor(bytesOf(std::vector<float>(9, 0.0f)), kFloat, 3, "VEC3", 8);
   EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos)))), "byteStride 8");
 }
 
@@ -591,7 +587,7 @@ TEST(GltfLoader, RejectsIndexCountNotMultipleOfThree) {
 
 TEST(GltfLoader, RejectsNonFloatPositions) {
   GltfBuilder b;
-  int pos = b.addAccessor(rawBytes(std::vector<uint16_t>(9, 0)), kUShort, 3, "VEC3");
+  int pos = b.addAccessor(bytesOf(std::vector<uint16_t>(9, 0)), kUShort, 3, "VEC3");
   EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos)))),
                      "accessor 0: POSITION must be FLOAT VEC3, not UNSIGNED_SHORT VEC3");
 }
@@ -600,8 +596,8 @@ TEST(GltfLoader, RejectsNonFloatPositions) {
 // elements replaced.
 std::string sparseAccessor(GltfBuilder& b, int base_view, const std::vector<uint16_t>& indices,
                            const std::vector<float>& values, size_t count) {
-  const int index_view = b.addView(rawBytes(indices));
-  const int value_view = b.addView(rawBytes(values));
+  const int index_view = b.addView(bytesOf(indices));
+  const int value_view = b.addView(bytesOf(values));
   return std::string("{") +
          (base_view >= 0 ? "\"bufferView\":" + std::to_string(base_view) + "," : "") +
          "\"componentType\":5126,\"count\":" + std::to_string(count) +
@@ -616,7 +612,7 @@ TEST(GltfLoader, SparseAccessorReplacesTheListedElements) {
   // The quad with vertex 2 at (5, 5, 0): the sparse values put it back at (1, 1, 0).
   std::vector<float> moved = kQuad;
   moved[6] = moved[7] = 5;
-  const int base = b.addView(rawBytes(moved));
+  const int base = b.addView(bytesOf(moved));
   const int pos = b.addRawAccessor(sparseAccessor(b, base, {2}, {1, 1, 0}, 4));
   const int idx = b.indicesU8({0, 1, 2, 0, 2, 3});
   expectQuad(loadJson(b.json(singleMesh(primitive(pos, idx)))));
@@ -633,7 +629,7 @@ TEST(GltfLoader, SparseAccessorWithoutBufferViewStartsFromZeros) {
 
 TEST(GltfLoader, RejectsSparseIndicesThatDoNotIncrease) {
   GltfBuilder b;
-  const int base = b.addView(rawBytes(kQuad));
+  const int base = b.addView(bytesOf(kQuad));
   const int pos = b.addRawAccessor(sparseAccessor(b, base, {2, 1}, {1, 1, 0, 1, 0, 0}, 4));
   const int idx = b.indicesU8({0, 1, 2, 0, 2, 3});
   EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos, idx)))),
@@ -642,7 +638,7 @@ TEST(GltfLoader, RejectsSparseIndicesThatDoNotIncrease) {
 
 TEST(GltfLoader, RejectsSparseIndexOutOfRange) {
   GltfBuilder b;
-  const int base = b.addView(rawBytes(kQuad));
+  const int base = b.addView(bytesOf(kQuad));
   const int pos = b.addRawAccessor(sparseAccessor(b, base, {4}, {1, 1, 0}, 4));
   EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos)))),
                      "sparse index 4 out of range for 4 elements");
@@ -652,10 +648,9 @@ TEST(GltfLoader, RejectsSparseIndexOutOfRange) {
 TEST(GltfLoader, QuantizedPositionsAreDecodedAsTheSpecificationSays) {
   GltfBuilder b;
   const std::vector<int16_t> normalized = {0, 0, 0, 32767, 0, 0, 32767, 32767, 0, 0, 32767, 0};
-  const int pos =
-      b.addAccessor(rawBytes(normalized), 5122, 4, "VEC3", 0, 0, ",\"normalized\":true");
+  const int pos = b.addAccessor(bytesOf(normalized), 5122, 4, "VEC3", 0, 0, ",\"normalized\":true");
   const std::vector<uint8_t> plain = {0, 0, 0, 2, 0, 0, 2, 2, 0, 0, 2, 0};
-  const int pos2 = b.addAccessor(rawBytes(plain), kUByte, 4, "VEC3");
+  const int pos2 = b.addAccessor(bytesOf(plain), kUByte, 4, "VEC3");
   const int idx = b.indicesU8({0, 1, 2, 0, 2, 3});
   const std::string rest =
       "\"extensionsUsed\":[\"KHR_mesh_quantization\"],"
@@ -671,7 +666,7 @@ TEST(GltfLoader, QuantizedPositionsAreDecodedAsTheSpecificationSays) {
 
 TEST(GltfLoader, IntegerPositionsWithoutQuantizationExtensionNameIt) {
   GltfBuilder b;
-  const int pos = b.addAccessor(rawBytes(std::vector<uint16_t>(9, 0)), kUShort, 3, "VEC3");
+  const int pos = b.addAccessor(bytesOf(std::vector<uint16_t>(9, 0)), kUShort, 3, "VEC3");
   EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos)))), "KHR_mesh_quantization");
 }
 
@@ -721,14 +716,14 @@ TEST(GltfLoader, SkinnedMeshFollowsItsJoints) {
   GltfBuilder b;
   const int pos = b.vec3({0, 0, 0, 1, 0, 0, 1, 1, 0});
   const std::vector<uint8_t> joints = {0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0};
-  const int j = b.addAccessor(rawBytes(joints), kUByte, 3, "VEC4");
+  const int j = b.addAccessor(bytesOf(joints), kUByte, 3, "VEC4");
   const int w = b.addAccessor(
-      rawBytes(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 0.25f, 0.25f, 0, 0}), kFloat, 3, "VEC4");
+      bytesOf(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 0.25f, 0.25f, 0, 0}), kFloat, 3, "VEC4");
   std::vector<float> ibm(32, 0.0f);
   for (int m = 0; m < 2; ++m)
     for (int d = 0; d < 4; ++d) ibm[size_t(m * 16 + d * 5)] = 1.0f;
   ibm[16 + 12] = -1.0f;  // joint 1: translation column x = -1
-  const int inverse_bind = b.addAccessor(rawBytes(ibm), kFloat, 2, "MAT4");
+  const int inverse_bind = b.addAccessor(bytesOf(ibm), kFloat, 2, "MAT4");
   const std::string rest =
       "\"scenes\":[{\"nodes\":[0,1,2]}],\"nodes\":[{\"mesh\":0,\"skin\":0,"
       "\"translation\":[100,0,0]},{\"translation\":[0,0,3]},"
@@ -760,9 +755,9 @@ TEST(GltfLoader, ReadsVertexColours) {
 TEST(GltfLoader, RejectsSkinJointOutOfRange) {
   GltfBuilder b;
   const int pos = b.vec3({0, 0, 0, 1, 0, 0, 1, 1, 0});
-  const int j = b.addAccessor(rawBytes(std::vector<uint8_t>{0, 0, 0, 0, 7, 0, 0, 0, 0, 0, 0, 0}),
+  const int j = b.addAccessor(bytesOf(std::vector<uint8_t>{0, 0, 0, 0, 7, 0, 0, 0, 0, 0, 0, 0}),
                               kUByte, 3, "VEC4");
-  const int w = b.addAccessor(rawBytes(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}),
+  const int w = b.addAccessor(bytesOf(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}),
                               kFloat, 3, "VEC4");
   const std::string rest =
       "\"scenes\":[{\"nodes\":[0,1]}],\"nodes\":[{\"mesh\":0,\"skin\":0},{}],"
@@ -873,7 +868,7 @@ std::string sceneWithBufferUri(const std::string& name, const std::string& uri) 
   namespace fs = std::filesystem;
   const fs::path root = test::tempPath(name);
   fs::create_directories(root / "scene");
-  const std::string bin = rawBytes(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const std::string bin = bytesOf(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});
   writeFile((root / "outside.bin").string(), bin);
   writeFile((root / "scene" / "inside.bin").string(), bin);
   const std::string json =

@@ -18,13 +18,10 @@
 namespace gridrt {
 namespace {
 
+using test::bytesOf;
+
 // Products of a float cosine or sine of a quarter turn with small factors: a few ulps.
 constexpr float kTransformTolerance = 1e-6f;
-
-template <typename T>
-std::string bytesOf(const std::vector<T>& v) {
-  return std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
-}
 
 // One buffer (a data URI) of 4-byte aligned views, an accessor per view.
 class Document {

@@ -17,11 +17,6 @@ namespace gridrt::test {
 
 constexpr int kGltfUnsignedByte = 5121, kGltfUnsignedShort = 5123, kGltfFloat = 5126;
 
-template <typename T>
-std::string rawBytes(const std::vector<T>& values) {
-  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
-}
-
 // A number as JSON that reads back as the same double.
 inline std::string exactNumber(double v) {
   char text[40];
@@ -91,10 +86,10 @@ class GltfDocumentBuilder {
       const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
       extra = ",\"min\":[" + exactNumber(*lo) + "],\"max\":[" + exactNumber(*hi) + "]";
     }
-    return addAccessor(rawBytes(values), kGltfFloat, values.size() / per, type, extra);
+    return addAccessor(bytesOf(values), kGltfFloat, values.size() / per, type, extra);
   }
   int bytes(const std::vector<uint8_t>& values, const std::string& type) {
-    return addAccessor(rawBytes(values), kGltfUnsignedByte, values.size() / 4, type);
+    return addAccessor(bytesOf(values), kGltfUnsignedByte, values.size() / 4, type);
   }
 
   // The document: `rest` holds the other top-level members without braces.

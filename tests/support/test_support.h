@@ -22,6 +22,12 @@ std::vector<std::string> listDir(const std::string& dir);
 // `bytes` in base64 (RFC 4648, with padding), for data URIs in glTF documents made by tests.
 std::string base64(const std::string& bytes);
 
+// The bytes of `values` as they lie in memory: a glTF buffer's contents.
+template <typename T>
+std::string bytesOf(const std::vector<T>& values) {
+  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
 // Rays where `got` differs from `want`: another primitive, or another t bit for bit.
 // Reports the first difference as a test failure naming `label`.
 size_t hitMismatches(const std::vector<GrHit>& want, const std::vector<GrHit>& got,

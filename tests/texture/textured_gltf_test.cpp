@@ -18,6 +18,8 @@
 namespace gridrt {
 namespace {
 
+using test::bytesOf;
+
 // OpenImageIO's float sRGB curve against the double formula: within a few float ulps.
 constexpr double kSrgbTolerance = 1e-6;
 // COLOR_0 interpolated in float from the hit point: a few ulps of 1.
@@ -36,11 +38,6 @@ std::vector<uint8_t> texelCodes() {
     for (int c = 0; c < kSize; ++c)
       for (int ch = 0; ch < 3; ++ch) out.push_back(code(c, r, ch));
   return out;
-}
-
-template <typename T>
-std::string bytesOf(const std::vector<T>& v) {
-  return std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
 }
 
 // The quad's glTF document. `image`: the images entry, which may name buffer view 4 (the
