@@ -1,5 +1,6 @@
 """What the farm tells the user: a progress bar on a terminal (tasks and frames done,
-workers alive, time left) redrawn at most twice a second, and the closing summary."""
+workers alive, time left) redrawn at most twice a second and once more when every task is
+done, and the closing summary."""
 import sys
 import time
 
@@ -19,7 +20,8 @@ class Progress:
         if not self.shown:
             return
         now = time.monotonic()
-        if not force and now - self.last_draw < REDRAW_SECONDS:
+        finished = tasks_done >= self.tasks  # the full bar is always drawn once
+        if not force and not finished and now - self.last_draw < REDRAW_SECONDS:
             return
         self.last_draw = now
         share = tasks_done / self.tasks if self.tasks else 1.0
