@@ -13,9 +13,13 @@ namespace gridrt {
 namespace {
 
 struct Leaf {
-  float box[6];  // lo x, y, z, hi x, y, z
-  std::vector<GrTriangle> triangles;
+  float box[6];                // lo x, y, z, hi x, y, z
+  std::vector<int> triangles;  // positions in the top cell's triangles, increasing
 };
+
+// A grid node over at least this many triangles sorts them into its cells on every thread
+// (below it, the slices' start-up costs more than they save).
+constexpr size_t kParallelNodeTriangles = 16384;
 
 // One top cell's grids, numbered from 0 (spliced into the structure afterwards). Cell
 // codes as in AdaptiveCells, with leaves and nodes numbered locally.
@@ -26,6 +30,23 @@ struct Subtree {
   std::vector<Leaf> leaves;
   int depth = 0;
 };
+
+// Appends `part` after what `tree` holds, renumbering its nodes, planes, cells and leaves.
+void appendSubtree(Subtree& tree, Subtree&& part) {
+  const int node_base = int(tree.nodes.size()), cell_base = int(tree.cells.size());
+  const int plane_base = int(tree.planes.size()), leaf_base = int(tree.leaves.size());
+  for (GridNode n : part.nodes) {
+    n.cell_begin += cell_base;
+    for (int k = 0; k < 3; ++k) n.plane_begin[k] += plane_base;
+    tree.nodes.push_back(n);
+  }
+  for (int code : part.cells)
+    tree.cells.push_back(code >= 0 ? code + leaf_base : code == -1 ? -1 : code - node_base);
+  tree.planes.insert(tree.planes.end(), part.planes.begin(), part.planes.end());
+  std::move(part.leaves.begin(), part.leaves.end(), std::back_inserter(tree.leaves));
+  tree.depth = std::max(tree.depth, part.depth);
+  part = Subtree{};
+}
 
 // The planes of `r` equal cells between lo and hi (lo + k * ((hi - lo) / r) in float, the
 // ends exactly lo and hi); 1 cell when rounding would not keep them increasing.
@@ -41,24 +62,37 @@ std::vector<float> axisPlanes(float lo, float hi, int r) {
 }
 
 // The cells [first, last] on one axis whose margin-grown extent [p[i] - m, p[i+1] + m]
-// meets [lo, hi] (widened by one cell each side against rounding; the exact test decides).
+// may meet [lo, hi]: widened by kRangeSlack of a cell against the rounding of the exact
+// test's own arithmetic, which decides; clamped to the grid.
 void cellRange(const std::vector<float>& p, double lo, double hi, double m, int& first, int& last) {
+  // A billionth of the grid's mean cell: far above double rounding, far below any cell.
+  constexpr double kRangeSlack = 1e-9;
   const int r = int(p.size()) - 1;
-  first = int(std::lower_bound(p.begin() + 1, p.end(), float(lo - m)) - (p.begin() + 1));
-  last = int(std::upper_bound(p.begin(), p.end() - 1, float(hi + m)) - p.begin()) - 1;
-  first = std::clamp(first - 1, 0, r - 1);
-  last = std::clamp(last + 1, 0, r - 1);
+  const double slack = kRangeSlack * (double(p[r]) - double(p[0])) / r;
+  const double reach_lo = lo - m - slack, reach_hi = hi + m + slack;
+  // First cell whose upper face reaches lo; last cell whose lower face is below hi.
+  first = int(std::lower_bound(p.begin() + 1, p.end(), reach_lo,
+                               [](float a, double b) { return double(a) < b; }) -
+              (p.begin() + 1));
+  last = int(std::upper_bound(p.begin(), p.end() - 1, reach_hi,
+                              [](double b, float a) { return b < double(a); }) -
+             p.begin()) - 1;
+  first = std::clamp(first, 0, r - 1);
+  last = std::clamp(last, 0, r - 1);
 }
 
-// A grid over the box [lo, hi] for `triangles` (all overlapping the box grown by m), its
-// cells' leaves and grids below them appended to `tree`; returns the node's local index,
-// or -1 when the resolution is one cell (the box stays a leaf).
-int buildNode(const float lo[3], const float hi[3], const std::vector<GrTriangle>& triangles,
-              int depth, double m, float density, int max_leaf, Subtree& tree) {
+// A grid over the box [lo, hi] for the triangles at positions `ids` of `base` (increasing,
+// all overlapping the box grown by m), its cells' leaves and grids below them appended to
+// `tree` in cell order (the grids below built in parallel, then appended in that order, so
+// the numbering is the same on any number of threads); returns the node's local index, or
+// -1 when the resolution is one cell (the box stays a leaf).
+int buildNode(const float lo[3], const float hi[3], const GrTriangle* base,
+              const std::vector<int>& ids, int depth, double m, float density, int max_leaf,
+              Subtree& tree) {
   Bounds box;
   box.lo = glm::vec3(lo[0], lo[1], lo[2]);
   box.hi = glm::vec3(hi[0], hi[1], hi[2]);
-  const glm::ivec3 want = autoGridResolution(box, triangles.size(), density);
+  const glm::ivec3 want = autoGridResolution(box, ids.size(), density);
   std::vector<float> planes[3];
   for (int a = 0; a < 3; ++a) planes[a] = axisPlanes(lo[a], hi[a], want[a]);
   const int r[3] = {int(planes[0].size()) - 1, int(planes[1].size()) - 1,
@@ -77,47 +111,87 @@ int buildNode(const float lo[3], const float hi[3], const std::vector<GrTriangle
   tree.nodes.push_back(n);
   tree.cells.resize(tree.cells.size() + cells, -1);
 
-  // Triangles per cell, in the input's (increasing global) order.
-  std::vector<std::vector<GrTriangle>> in(cells);
-  for (const GrTriangle& t : triangles) {
-    glm::dvec3 v[3];
-    triangleVertices(t, v);
-    const glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2]));
-    const glm::dvec3 thi = glm::max(v[0], glm::max(v[1], v[2]));
-    int first[3], last[3];
-    for (int a = 0; a < 3; ++a) cellRange(planes[a], tlo[a], thi[a], m, first[a], last[a]);
-    for (int z = first[2]; z <= last[2]; ++z)
-      for (int y = first[1]; y <= last[1]; ++y)
-        for (int x = first[0]; x <= last[0]; ++x) {
-          const glm::dvec3 clo(double(planes[0][x]) - m, double(planes[1][y]) - m,
-                               double(planes[2][z]) - m);
-          const glm::dvec3 chi(double(planes[0][x + 1]) + m, double(planes[1][y + 1]) + m,
-                               double(planes[2][z + 1]) + m);
-          if (triangleOverlapsBox(clo, chi, v[0], v[1], v[2]))
-            in[x + r[0] * (y + r[1] * z)].push_back(t);
-        }
-  }
-  for (int z = 0; z < r[2]; ++z)
-    for (int y = 0; y < r[1]; ++y)
-      for (int x = 0; x < r[0]; ++x) {
-        const int c = x + r[0] * (y + r[1] * z);
-        if (in[c].empty()) continue;
-        const float clo[3] = {planes[0][x], planes[1][y], planes[2][z]};
-        const float chi[3] = {planes[0][x + 1], planes[1][y + 1], planes[2][z + 1]};
-        int child = -1;
-        if (int(in[c].size()) > max_leaf && depth < kMaxAdaptiveDepth)
-          child = buildNode(clo, chi, in[c], depth + 1, m, density, max_leaf, tree);
-        if (child >= 0) {
-          tree.cells[n.cell_begin + c] = -(child + 2);
-          continue;
-        }
-        tree.cells[n.cell_begin + c] = int(tree.leaves.size());
-        Leaf leaf;
-        std::copy(clo, clo + 3, leaf.box);
-        std::copy(chi, chi + 3, leaf.box + 3);
-        leaf.triangles = std::move(in[c]);
-        tree.leaves.push_back(std::move(leaf));
+  // Triangles per cell, in the input's (increasing global) order: (cell, triangle) pairs
+  // found in consecutive slices of the triangles (in parallel when there are many: a model
+  // alone in one top cell), then sorted by cell, slice by slice.
+  struct CellRef {
+    int cell;
+    int triangle;
+  };
+  const int slices = ids.size() >= kParallelNodeTriangles ? parallelSliceCount() : 1;
+  std::vector<std::vector<CellRef>> refs(slices);
+  parallelSlices(slices, [&](int me, int count) {
+    auto& mine = refs[me];
+    const auto [t_begin, t_end] = sliceRange(ids.size(), me, count);
+    for (size_t t = t_begin; t < t_end; ++t) {
+      glm::dvec3 v[3];
+      triangleVertices(base[ids[t]], v);
+      const glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2]));
+      const glm::dvec3 thi = glm::max(v[0], glm::max(v[1], v[2]));
+      int first[3], last[3];
+      for (int a = 0; a < 3; ++a) cellRange(planes[a], tlo[a], thi[a], m, first[a], last[a]);
+      // A triangle whose bounding box meets one grown cell only: its part inside this box
+      // grown by m (where it overlaps, or it would not be here) lies in that cell, since
+      // the grown cells cover the grown box. No test needed, as in the uniform grid.
+      if (first[0] == last[0] && first[1] == last[1] && first[2] == last[2]) {
+        mine.push_back({first[0] + r[0] * (first[1] + r[1] * first[2]), ids[t]});
+        continue;
       }
+      for (int z = first[2]; z <= last[2]; ++z)
+        for (int y = first[1]; y <= last[1]; ++y)
+          for (int x = first[0]; x <= last[0]; ++x) {
+            const glm::dvec3 clo = glm::dvec3(planes[0][x], planes[1][y], planes[2][z]) - m;
+            const glm::dvec3 chi =
+                glm::dvec3(planes[0][x + 1], planes[1][y + 1], planes[2][z + 1]) + m;
+            if (triangleOverlapsBox(clo, chi, v[0], v[1], v[2]))
+              mine.push_back({x + r[0] * (y + r[1] * z), ids[t]});
+          }
+    }
+  });
+  std::vector<int> count(cells, 0);
+  for (const auto& list : refs)
+    for (const CellRef& ref : list) ++count[ref.cell];
+  std::vector<std::vector<int>> in(cells);
+  for (int c = 0; c < cells; ++c) in[c].reserve(count[c]);
+  for (const auto& list : refs)
+    for (const CellRef& ref : list) in[ref.cell].push_back(ref.triangle);
+  refs = {};
+
+  // The cells' boxes (faces on this grid's planes).
+  auto cellBox = [&](int c, float clo[3], float chi[3]) {
+    const int x = c % r[0], y = (c / r[0]) % r[1], z = c / (r[0] * r[1]);
+    clo[0] = planes[0][x], clo[1] = planes[1][y], clo[2] = planes[2][z];
+    chi[0] = planes[0][x + 1], chi[1] = planes[1][y + 1], chi[2] = planes[2][z + 1];
+  };
+  // The full cells' grids, each into a subtree of its own, in parallel.
+  std::vector<int> full;
+  for (int c = 0; c < cells; ++c)
+    if (int(in[c].size()) > max_leaf && depth < kMaxAdaptiveDepth) full.push_back(c);
+  std::vector<Subtree> below(full.size());
+  std::vector<char> split(full.size(), 0);
+  parallelForDynamic(size_t(0), full.size(), size_t(1), [&](size_t k) {
+    float clo[3], chi[3];
+    cellBox(full[k], clo, chi);
+    split[k] = buildNode(clo, chi, base, in[full[k]], depth + 1, m, density, max_leaf,
+                         below[k]) >= 0;
+  });
+  for (int c = 0, k = 0; c < cells; ++c) {
+    if (in[c].empty()) continue;
+    if (k < int(full.size()) && full[k] == c) {
+      const bool has_grid = split[k];
+      Subtree& part = below[k++];
+      if (has_grid) {
+        tree.cells[n.cell_begin + c] = -(int(tree.nodes.size()) + 2);  // part's node 0
+        appendSubtree(tree, std::move(part));
+        continue;
+      }
+    }
+    tree.cells[n.cell_begin + c] = int(tree.leaves.size());
+    Leaf leaf;
+    cellBox(c, leaf.box, leaf.box + 3);
+    leaf.triangles = std::move(in[c]);
+    tree.leaves.push_back(std::move(leaf));
+  }
   return node;
 }
 
@@ -174,10 +248,11 @@ UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& setting
     const glm::ivec3 v = top.voxelCoords(top.voxel_of_pe[pe]);
     const float lo[3] = {plane(0, v.x), plane(1, v.y), plane(2, v.z)};
     const float hi[3] = {plane(0, v.x + 1), plane(1, v.y + 1), plane(2, v.z + 1)};
-    std::vector<GrTriangle> tris(top.pe_triangles.begin() + top.pe_tri_begin[pe],
-                                 top.pe_triangles.begin() + top.pe_tri_begin[pe + 1]);
-    split[pe] = buildNode(lo, hi, tris, 1, top.margin, settings.density,
-                          settings.max_leaf_triangles, trees[pe]) >= 0;
+    std::vector<int> ids(top.triangleCountOfPe(pe));
+    for (size_t k = 0; k < ids.size(); ++k) ids[k] = int(k);
+    split[pe] = buildNode(lo, hi, top.pe_triangles.data() + top.pe_tri_begin[pe], ids, 1,
+                          top.margin, settings.density, settings.max_leaf_triangles,
+                          trees[pe]) >= 0;
   });
 
   UniformGrid grid;
@@ -186,6 +261,16 @@ UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& setting
   grid.triangle_count = top.triangle_count;
   AdaptiveCells& a = grid.adaptive;
   a.top.assign(top.voxelCount(), -1);
+  // Room for every leaf at once (merged top leaves hold at most their cells' triangles):
+  // growing these arrays leaf by leaf copied and faulted in tens of megabytes.
+  size_t leaf_count = size_t(top_pes), leaf_triangles = top.pe_triangles.size();
+  for (const Subtree& t : trees) {
+    leaf_count += t.leaves.size();
+    for (const Leaf& leaf : t.leaves) leaf_triangles += leaf.triangles.size();
+  }
+  grid.pe_box.reserve(leaf_count * 6);
+  grid.pe_triangles.reserve(leaf_triangles);
+  grid.pe_tri_begin.reserve(leaf_count + 1);
   grid.pe_tri_begin.push_back(0);
   auto addPe = [&](const float box[6], const GrTriangle* first, size_t count) {
     grid.pe_box.insert(grid.pe_box.end(), box, box + 6);
@@ -245,12 +330,18 @@ UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& setting
               a.top[w] = id;
             }
       }
-  // The grids below the split cells, spliced in voxel order.
+  // The grids below the split cells, spliced in voxel order: first the structure and each
+  // leaf's place, then the leaves' triangles copied in parallel.
+  struct LeafCopy {
+    const GrTriangle* base;
+    const Leaf* leaf;
+  };
+  std::vector<LeafCopy> copies;
   for (int pe = 0; pe < top_pes; ++pe) {
     if (!split[pe]) continue;
     Subtree& t = trees[pe];
     const int node_base = int(a.nodes.size()), cell_base = int(a.cells.size());
-    const int plane_base = int(a.planes.size()), pe_base = int(grid.pe_tri_begin.size()) - 1;
+    const int plane_base = int(a.planes.size()), pe_base = grid.peCount();
     for (GridNode n : t.nodes) {
       n.cell_begin += cell_base;
       for (int k = 0; k < 3; ++k) n.plane_begin[k] += plane_base;
@@ -259,11 +350,22 @@ UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& setting
     for (int code : t.cells)
       a.cells.push_back(code >= 0 ? code + pe_base : code == -1 ? -1 : code - node_base);
     a.planes.insert(a.planes.end(), t.planes.begin(), t.planes.end());
-    for (const Leaf& leaf : t.leaves) addPe(leaf.box, leaf.triangles.data(), leaf.triangles.size());
+    const GrTriangle* base = top.pe_triangles.data() + top.pe_tri_begin[pe];
+    for (const Leaf& leaf : t.leaves) {
+      grid.pe_box.insert(grid.pe_box.end(), leaf.box, leaf.box + 6);
+      grid.pe_tri_begin.push_back(grid.pe_tri_begin.back() + int(leaf.triangles.size()));
+      copies.push_back({base, &leaf});
+    }
     a.top[top.voxel_of_pe[pe]] = -(node_base + 2);
     a.depth = std::max(a.depth, t.depth);
-    t = Subtree{};
   }
+  const int first_copied = grid.peCount() - int(copies.size());
+  grid.pe_triangles.resize(size_t(grid.pe_tri_begin.back()));
+  parallelFor(size_t(0), copies.size(), [&](size_t k) {
+    GrTriangle* out = grid.pe_triangles.data() + grid.pe_tri_begin[first_copied + int(k)];
+    for (int id : copies[k].leaf->triangles) *out++ = copies[k].base[id];
+  });
+  trees = {};
   grid.info.pe_count = grid.peCount();
   return grid;
 }
