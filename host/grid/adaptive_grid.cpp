@@ -31,18 +31,25 @@ struct Subtree {
   int depth = 0;
 };
 
-// Appends `part` after what `tree` holds, renumbering its nodes, planes, cells and leaves.
-void appendSubtree(Subtree& tree, Subtree&& part) {
-  const int node_base = int(tree.nodes.size()), cell_base = int(tree.cells.size());
-  const int plane_base = int(tree.planes.size()), leaf_base = int(tree.leaves.size());
+// Appends the grid nodes, cells and planes of `part` to the arrays `nodes`, `cells`,
+// `planes`, renumbering what refers into them; its leaves are numbered from `leaf_base`.
+void appendGrids(std::vector<GridNode>& nodes, std::vector<int>& cells,
+                 std::vector<float>& planes, const Subtree& part, int leaf_base) {
+  const int node_base = int(nodes.size()), cell_base = int(cells.size());
+  const int plane_base = int(planes.size());
   for (GridNode n : part.nodes) {
     n.cell_begin += cell_base;
     for (int k = 0; k < 3; ++k) n.plane_begin[k] += plane_base;
-    tree.nodes.push_back(n);
+    nodes.push_back(n);
   }
   for (int code : part.cells)
-    tree.cells.push_back(code >= 0 ? code + leaf_base : code == -1 ? -1 : code - node_base);
-  tree.planes.insert(tree.planes.end(), part.planes.begin(), part.planes.end());
+    cells.push_back(code >= 0 ? code + leaf_base : code == -1 ? -1 : code - node_base);
+  planes.insert(planes.end(), part.planes.begin(), part.planes.end());
+}
+
+// Appends `part` after what `tree` holds.
+void appendSubtree(Subtree& tree, Subtree&& part) {
+  appendGrids(tree.nodes, tree.cells, tree.planes, part, int(tree.leaves.size()));
   std::move(part.leaves.begin(), part.leaves.end(), std::back_inserter(tree.leaves));
   tree.depth = std::max(tree.depth, part.depth);
   part = Subtree{};
@@ -340,16 +347,8 @@ UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& setting
   for (int pe = 0; pe < top_pes; ++pe) {
     if (!split[pe]) continue;
     Subtree& t = trees[pe];
-    const int node_base = int(a.nodes.size()), cell_base = int(a.cells.size());
-    const int plane_base = int(a.planes.size()), pe_base = grid.peCount();
-    for (GridNode n : t.nodes) {
-      n.cell_begin += cell_base;
-      for (int k = 0; k < 3; ++k) n.plane_begin[k] += plane_base;
-      a.nodes.push_back(n);
-    }
-    for (int code : t.cells)
-      a.cells.push_back(code >= 0 ? code + pe_base : code == -1 ? -1 : code - node_base);
-    a.planes.insert(a.planes.end(), t.planes.begin(), t.planes.end());
+    const int node_base = int(a.nodes.size());
+    appendGrids(a.nodes, a.cells, a.planes, t, grid.peCount());
     const GrTriangle* base = top.pe_triangles.data() + top.pe_tri_begin[pe];
     for (const Leaf& leaf : t.leaves) {
       grid.pe_box.insert(grid.pe_box.end(), leaf.box, leaf.box + 6);
