@@ -22,6 +22,7 @@ PACKAGES=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libglm-dev libopenimageio-dev openimageio-tools libtinygltf-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev libhwy-dev libtbb-dev
+  libdraco-dev libmeshoptimizer-dev libassimp-dev
   python3 python3-venv python3-distributed python3-psutil
 )
 if [ "$bench" -eq 1 ]; then PACKAGES+=(libembree-dev); fi

@@ -28,6 +28,7 @@
 #include "gridrt_intersector.h"
 #include "image_output.h"
 #include "memory_estimate.h"
+#include "mesh_import.h"
 #include "missing_device.h"
 #include "parallel_loops.h"
 #include "prepared_triangles.h"
@@ -148,6 +149,19 @@ SceneSource loadScene(const Options& o, const FrameJob& first, Scene& first_scen
       source.warnings.push_back(
           "the built-in scene has no animations: --time/--frames "
           "render it as it is");
+    return source;
+  }
+  if (isImportedMeshFile(o.scene)) {
+    // Geometry and material colours only: no cameras, animations or textures (mesh_import.h).
+    if (!o.camera_name.empty())
+      throw UsageError("--camera '" + o.camera_name + "': " + o.scene +
+                       " is read without cameras (the view frames the scene)");
+    if (!o.animation.empty())
+      throw UsageError("--animation '" + o.animation + "': " + o.scene +
+                       " is read without animations");
+    first_scene = importMeshFile(o.scene);
+    if (posed) source.warnings.push_back(o.scene + " is read without animations: --time/--frames "
+                                         "render it as it is");
     return source;
   }
   GltfDocument document = GltfDocument::fromFile(o.scene);

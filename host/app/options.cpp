@@ -206,7 +206,8 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
       "GridRT: a Whitted ray tracer on OpenCL, with the GridRT parallel architecture\n"
       "(uniform grid, one processing element per non-empty voxel, two-phase reduction).\n"
       "Without SCENE it renders the built-in default scene.");
-  app.add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb)");
+  app.add_option("scene", o.scene,
+                 "glTF 2.0 scene (.gltf or .glb), or a mesh: OBJ, PLY, STL, ... (assimp)");
   app.add_option("-o,--output", o.output,
                  "output image: .png/.jpg (sRGB) or .exr (linear); default SCENE.png (the "
                  "scene's name, here), gridrt.png for the built-in scene");

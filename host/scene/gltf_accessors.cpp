@@ -1,6 +1,7 @@
 #include "gltf_accessors.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <optional>
@@ -27,6 +28,12 @@ std::string oneLine(const std::string& text) {
 
 void fail(const std::string& label, const std::string& what) {
   throw SceneError(oneLine(label + ": " + what));
+}
+
+std::string named(const std::string& kind, size_t index, const std::string& name) {
+  std::string s = kind + " " + std::to_string(index);
+  if (!name.empty()) s += " '" + name + "'";
+  return s;
 }
 
 const char* componentName(int component_type) {
@@ -114,11 +121,12 @@ const unsigned char* viewBytes(const tinygltf::Model& model, int view_index, siz
   const tinygltf::BufferView& view = model.bufferViews[size_t(view_index)];
   const std::string view_name = "bufferView " + std::to_string(view_index);
   if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
-    fail(label, view_name + ": buffer " + std::to_string(view.buffer) + " does not exist");
+    fail(label, where + ": " + view_name + ": buffer " + std::to_string(view.buffer) +
+                    " does not exist");
   const std::vector<unsigned char>& buffer = model.buffers[size_t(view.buffer)].data;
   auto view_end = accessorEnd(view.byteOffset, 0, 1, view.byteLength);
   if (!view_end || *view_end > buffer.size())
-    fail(label, view_name + ": bytes " + std::to_string(view.byteOffset) + " + " +
+    fail(label, where + ": " + view_name + ": bytes " + std::to_string(view.byteOffset) + " + " +
                     std::to_string(view.byteLength) + " exceed buffer " +
                     std::to_string(view.buffer) + " of " + std::to_string(buffer.size()) +
                     " bytes");
@@ -259,6 +267,30 @@ AccessorData readAccessor(const tinygltf::Model& model, int index, const std::st
   }
   if (acc.sparse.isSparse) applySparse(model, acc, where, label, out);
   return out;
+}
+
+ViewBytes bufferViewBytes(const tinygltf::Model& model, int view_index, const std::string& where,
+                          const std::string& label) {
+  if (view_index < 0 || size_t(view_index) >= model.bufferViews.size())
+    fail(label, where + ": bufferView " + std::to_string(view_index) + " does not exist");
+  const size_t length = model.bufferViews[size_t(view_index)].byteLength;
+  return {viewBytes(model, view_index, 0, 0, 1, length, where, label), length};
+}
+
+std::optional<uint64_t> wholeNumber(const tinygltf::Value& object, const char* key) {
+  if (!object.IsObject() || !object.Has(key)) return std::nullopt;
+  const tinygltf::Value& v = object.Get(key);
+  if (!v.IsNumber()) return std::nullopt;
+  const double d = v.GetNumberAsDouble();
+  if (!(d >= 0.0 && d <= 9007199254740992.0) || d != std::floor(d)) return std::nullopt;
+  return uint64_t(d);
+}
+
+int addBuffer(tinygltf::Model& model, std::vector<unsigned char> bytes) {
+  tinygltf::Buffer buffer;
+  buffer.data = std::move(bytes);
+  model.buffers.push_back(std::move(buffer));
+  return int(model.buffers.size() - 1);
 }
 
 }  // namespace gridrt::gltf

@@ -11,7 +11,9 @@
 #include <tiny_gltf.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,9 @@ std::string oneLine(const std::string& text);
 
 // Throws SceneError("label: what") on one line.
 [[noreturn]] void fail(const std::string& label, const std::string& what);
+
+// "kind N 'name'", or "kind N" when the name is empty: how messages name an element.
+std::string named(const std::string& kind, size_t index, const std::string& name);
 
 const char* componentName(int component_type);  // "UNSIGNED_SHORT", ...
 const char* typeName(int type);                 // "VEC3", ...
@@ -47,5 +52,21 @@ struct AccessorData {
 
 // Reads accessor `index` of `model`; `label` names the file in messages.
 AccessorData readAccessor(const tinygltf::Model& model, int index, const std::string& label);
+
+// The bytes of buffer view `view_index`, checked to lie inside its buffer; `where` names the
+// reader in messages.
+struct ViewBytes {
+  const unsigned char* data = nullptr;
+  size_t size = 0;
+};
+ViewBytes bufferViewBytes(const tinygltf::Model& model, int view_index, const std::string& where,
+                          const std::string& label);
+
+// Member `key` of an extension object when it is a whole number in [0, 2^53]; nullopt when
+// it is absent, not a number, negative or fractional.
+std::optional<uint64_t> wholeNumber(const tinygltf::Value& object, const char* key);
+
+// Decoded data (Draco, meshopt) as a new buffer of the model; returns its index.
+int addBuffer(tinygltf::Model& model, std::vector<unsigned char> bytes);
 
 }  // namespace gridrt::gltf

@@ -22,8 +22,12 @@
 
 #include "errors.h"
 #include "gltf_accessors.h"
+#include "gltf_compressed_input.h"
+#include "gltf_draco.h"
+#include "gltf_meshopt.h"
 #include "gltf_textures.h"
 #include "gltf_vertex_attributes.h"
+#include "scene_triangles.h"
 
 namespace gridrt {
 namespace {
@@ -43,13 +47,8 @@ constexpr double kPi = 3.14159265358979323846;
 // Messages
 
 using gltf::fail;
+using gltf::named;
 using gltf::oneLine;
-
-std::string named(const std::string& kind, size_t index, const std::string& name) {
-  std::string s = kind + " " + std::to_string(index);
-  if (!name.empty()) s += " '" + name + "'";
-  return s;
-}
 
 // ---------------------------------------------------------------------------------------------
 // Sandboxed file access for external URIs (buffers, images)
@@ -198,30 +197,21 @@ void checkJsonDepth(std::string_view json, const std::string& label) {
   }
 }
 
-// What an extension the loader cannot read does to a mesh, for the message that refuses it.
-const char* unsupportedExtensionEffect(const std::string& ext) {
-  if (ext == "KHR_draco_mesh_compression") return " (Draco-compressed meshes)";
-  if (ext == "EXT_meshopt_compression") return " (meshoptimizer-compressed buffers)";
-  return "";
-}
-
 void checkRequiredExtensions(const std::vector<std::string>& required, const std::string& label) {
   for (const std::string& ext : required) {
     bool supported = ext == "KHR_lights_punctual" || ext == "KHR_mesh_quantization" ||
+                     ext == "KHR_draco_mesh_compression" || ext == "EXT_meshopt_compression" ||
                      ext.rfind("KHR_materials_", 0) == 0 || ext.rfind("KHR_texture_", 0) == 0 ||
                      ext.rfind("EXT_texture_", 0) == 0;
-    if (!supported)
-      fail(label, "requires extension " + ext + unsupportedExtensionEffect(ext) +
-                      ", which is not supported");
+    if (!supported) fail(label, "requires extension " + ext + ", which is not supported");
   }
 }
 
-// The JSON's extensionsRequired, read before tinygltf parses the rest: a compressed mesh's
-// accessors have no buffer view, which tinygltf reports as a malformed file instead of
-// naming the extension. Unreadable JSON is left to tinygltf's own message.
-std::vector<std::string> requiredExtensions(std::string_view json) {
+// The JSON's extensionsRequired, read before tinygltf parses the rest, so that an unknown
+// extension is named instead of what tinygltf makes of the members it brings. Unreadable
+// JSON is left to tinygltf's own message.
+std::vector<std::string> requiredExtensions(const nlohmann::json& doc) {
   std::vector<std::string> out;
-  const nlohmann::json doc = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
   if (!doc.is_object()) return out;
   auto it = doc.find("extensionsRequired");
   if (it == doc.end() || !it->is_array()) return out;
@@ -251,7 +241,15 @@ tinygltf::Model parseModel(const unsigned char* data, size_t size, const std::st
   std::string_view json = jsonText(data, size, binary);
   checkJsonDepth(json, label);
   checkDataUris(json, label);
-  checkRequiredExtensions(requiredExtensions(json), label);
+  const nlohmann::json doc = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
+  checkRequiredExtensions(requiredExtensions(doc), label);
+  // What tinygltf cannot parse of compressed files, set aside until it has parsed the rest.
+  const gltf::CompressedInput compressed = gltf::prepareCompressedInput(doc, data, size, binary);
+  if (!compressed.bytes.empty()) {
+    data = compressed.bytes.data();
+    size = compressed.bytes.size();
+    if (size > kMaxInputBytes) fail(label, "larger than 4 GiB");
+  }
 
   FileGuard guard;
   if (!base_dir.empty()) {
@@ -283,10 +281,11 @@ tinygltf::Model parseModel(const unsigned char* data, size_t size, const std::st
   // tinygltf sometimes reports a problem and carries on (e.g. a misaligned GLB chunk).
   if (!err.empty()) warnings.push_back("glTF: " + oneLine(err));
   if (!warn.empty()) warnings.push_back("glTF: " + oneLine(warn));
+  gltf::restoreCompressedInput(compressed, model);
+  gltf::decodeMeshoptViews(model, label);  // first: a Draco buffer view may be one of them
+  gltf::decodeDracoPrimitives(model, label);
   return model;
 }
-
-// Extensions that change geometry cannot be ignored; material and texture ones can.
 
 // ---------------------------------------------------------------------------------------------
 // Accessors
@@ -372,25 +371,6 @@ glm::dmat4 localTransform(const tinygltf::Node& node, const std::string& where,
 
 glm::dvec3 transformPoint(const glm::dmat4& m, const glm::dvec3& p) {
   return glm::dvec3(m * glm::dvec4(p, 1.0));
-}
-
-bool isFinite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-// Shading needs unit normals; a zero or non-finite vector falls back to `fallback`.
-glm::vec3 unitOr(const glm::dvec3& v, const glm::vec3& fallback) {
-  const double len = glm::length(v);
-  if (!(len > 0.0) || !std::isfinite(len)) return fallback;
-  glm::vec3 u(v / len);
-  return isFinite(u) ? u : fallback;
-}
-
-// Any unit vector serves a zero-area triangle, which is never shaded from a real hit.
-const glm::vec3 kArbitraryNormal{0.0f, 0.0f, 1.0f};
-
-glm::vec3 geometricNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-  return unitOr(glm::cross(glm::dvec3(b - a), glm::dvec3(c - a)), kArbitraryNormal);
 }
 
 // Camera-to-world without scale or shear: keeps the viewing direction (-Z) and the up
@@ -546,11 +526,12 @@ class SceneBuilder {
     convertMaterials();
     traverse(rootNodes());
     if (scene_.positions.empty()) fail(label_, "the scene has no triangles");
-    finishNormals();
+    // Triangles from primitives without NORMAL keep the face normal addTriangle gave them.
+    finishNormals(any_normals_, scene_);
     gltf::finishVertexAttributes(scene_);
     chooseCamera();
     scene_.has_lights = !scene_.lights.empty();
-    summariseWarnings();
+    addDropWarnings(scene_);
     for (std::string& w : scene_.warnings) w = oneLine(w);  // names may hold newlines
     return std::move(scene_);
   }
@@ -895,32 +876,17 @@ class SceneBuilder {
       // A skinned triangle mirrors where its first vertex's skin matrix does.
       const bool mirrored =
           skinned ? glm::determinant(glm::dmat3(skin[indices[t]])) < 0.0 : node_mirrored;
-      if (!isFinite(p[0]) || !isFinite(p[1]) || !isFinite(p[2])) {
-        ++scene_.dropped_degenerate;
-        continue;
-      }
-      // Exactly zero area (in double, where the float vertices are exact): no ray can hit it.
-      const glm::dvec3 a(p[0]);
-      if (glm::cross(glm::dvec3(p[1]) - a, glm::dvec3(p[2]) - a) == glm::dvec3(0.0)) {
-        ++scene_.dropped_zero_area;
-        continue;
-      }
+      if (!keepTriangle(p, scene_)) continue;
       // The glTF spec: a mirroring transform turns the winding clockwise; swap it back.
       if (mirrored) std::swap(p[1], p[2]), std::swap(n[1], n[2]);
-      const glm::vec3 face = geometricNormal(p[0], p[1], p[2]);
       uint32_t stored[3] = {indices[t], indices[t + 1], indices[t + 2]};
       if (mirrored) std::swap(stored[1], stored[2]);
       glm::vec4 tangents[3];
       for (int k = 0; k < 3; ++k)
         tangents[k] = gltf::worldTangent(extras, stored[k], skinned ? skin[stored[k]] : world);
       gltf::appendTriangleAttributes(extras, stored, tangents, scene_.material_of.size(), scene_);
-      for (int k = 0; k < 3; ++k) {
-        scene_.positions.push_back(p[k]);
-        // Unusable file normals (zero, NaN) fall back to the face normal.
-        scene_.normals.push_back(n[k] == glm::vec3(0.0f) ? face : n[k]);
-      }
-      scene_.material_of.push_back(material);
-      has_normals_.push_back(normals.has_value());
+      addTriangle(p, n, material, scene_);
+      any_normals_ = any_normals_ || normals.has_value();
     }
   }
 
@@ -952,13 +918,6 @@ class SceneBuilder {
                          std::to_string(vertex_count) + " vertices");
     }
     return out;
-  }
-
-  // Normals are all-or-nothing: triangles from primitives without NORMAL keep the face normal
-  // written in addPrimitive; if no primitive had normals, there are none.
-  void finishNormals() {
-    if (std::find(has_normals_.begin(), has_normals_.end(), true) == has_normals_.end())
-      scene_.normals.clear();
   }
 
   void chooseCamera() {
@@ -998,25 +957,12 @@ class SceneBuilder {
     scene_.has_camera = true;
   }
 
-  void summariseWarnings() {
-    if (scene_.skipped_primitives > 0)
-      scene_.warnings.push_back(std::to_string(scene_.skipped_primitives) +
-                                " primitive(s) skipped (points, lines, strips, fans or no "
-                                "positions)");
-    if (scene_.dropped_degenerate > 0)
-      scene_.warnings.push_back(std::to_string(scene_.dropped_degenerate) +
-                                " triangle(s) with NaN/Inf coordinates dropped");
-    if (scene_.dropped_zero_area > 0)
-      scene_.warnings.push_back(std::to_string(scene_.dropped_zero_area) +
-                                " triangle(s) with zero area dropped");
-  }
-
   const tinygltf::Model& model_;
   const std::string& label_;
   const GltfLoadOptions& options_;
   const ScenePose* pose_;  // null: the still pose
   Scene scene_;
-  std::vector<bool> has_normals_;  // per triangle: from a primitive with NORMAL
+  bool any_normals_ = false;  // some triangle came from a primitive with NORMAL
   std::vector<CameraNode> camera_nodes_;
   int default_material_ = -1;
   // Per node: its world matrix, once the traversal has reached it.

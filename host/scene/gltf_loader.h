@@ -15,7 +15,8 @@
 //   stays empty when none has.
 // - Accessors: every component type, normalized integers, sparse accessors
 //   (gltf_accessors.h); integer POSITION/NORMAL where the file declares
-//   KHR_mesh_quantization. Draco and meshopt compression are refused, naming the extension.
+//   KHR_mesh_quantization; KHR_draco_mesh_compression (gltf_draco.h) and
+//   EXT_meshopt_compression (gltf_meshopt.h), decoded as the file is parsed.
 // - The still pose: morph targets at the node's weights (else the mesh's); a skinned mesh
 //   follows its joints' world matrices times their inverse bind matrices, weighted by
 //   JOINTS_n/WEIGHTS_n normalised to sum 1, and ignores its own node's transform (glTF).

@@ -16,12 +16,6 @@ constexpr int kNearestMipmapNearest = 9984, kLinearMipmapNearest = 9985;
 constexpr int kNearestMipmapLinear = 9986, kLinearMipmapLinear = 9987;
 constexpr int kClampToEdge = 33071, kMirroredRepeat = 33648, kRepeat = 10497;
 
-std::string named(const std::string& kind, size_t index, const std::string& name) {
-  std::string s = kind + " " + std::to_string(index);
-  if (!name.empty()) s += " '" + name + "'";
-  return s;
-}
-
 void warnOnce(std::vector<std::string>& warnings, const std::string& warning) {
   if (std::find(warnings.begin(), warnings.end(), warning) == warnings.end())
     warnings.push_back(warning);
@@ -73,24 +67,6 @@ Texture convertTexture(const tinygltf::Model& model, const tinygltf::Texture& t,
       break;
   }
   return out;
-}
-
-// A buffer view's bytes, its range checked against its buffer.
-std::vector<unsigned char> bufferViewBytes(const tinygltf::Model& model, int view_index,
-                                           const std::string& where, const std::string& label) {
-  if (size_t(view_index) >= model.bufferViews.size())
-    fail(label, where + ": buffer view " + std::to_string(view_index) + " does not exist");
-  const tinygltf::BufferView& view = model.bufferViews[size_t(view_index)];
-  if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
-    fail(label, where + ": buffer view " + std::to_string(view_index) + " names buffer " +
-                    std::to_string(view.buffer) + ", which does not exist");
-  const std::vector<unsigned char>& data = model.buffers[size_t(view.buffer)].data;
-  if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
-    fail(label, where + ": buffer view " + std::to_string(view_index) + " (bytes " +
-                    std::to_string(view.byteOffset) + " + " + std::to_string(view.byteLength) +
-                    ") lies outside its buffer of " + std::to_string(data.size()) + " bytes");
-  const auto first = data.begin() + std::ptrdiff_t(view.byteOffset);
-  return std::vector<unsigned char>(first, first + std::ptrdiff_t(view.byteLength));
 }
 
 double numberOr(const tinygltf::Value& object, const char* key, double fallback) {
@@ -168,8 +144,12 @@ void convertTextures(const tinygltf::Model& model, const std::string& label, Sce
     out.name = named("image", i, image.name);
     out.mime_type = image.mimeType;
     out.uri = image.uri;
-    out.encoded = image.bufferView >= 0 ? bufferViewBytes(model, image.bufferView, out.name, label)
-                                        : image.image;
+    if (image.bufferView >= 0) {
+      const ViewBytes bytes = bufferViewBytes(model, image.bufferView, out.name, label);
+      out.encoded.assign(bytes.data, bytes.data + bytes.size);
+    } else {
+      out.encoded = image.image;
+    }
     scene.images.push_back(std::move(out));
   }
   for (size_t i = 0; i < model.textures.size(); ++i)

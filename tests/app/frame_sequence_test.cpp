@@ -11,18 +11,12 @@
 #include "errors.h"
 #include "options.h"
 #include "progress.h"
+#include "test_support.h"
 
 namespace gridrt {
 namespace {
 
-std::string usageError(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const UsageError& e) {
-    return e.what();
-  }
-  return "<no error>";
-}
+std::string usageError(const std::function<void()>& f) { return test::errorOf<UsageError>(f); }
 
 Options parse(std::vector<std::string> args) {
   args.insert(args.begin(), "gridrt");

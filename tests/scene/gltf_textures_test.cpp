@@ -82,12 +82,7 @@ Scene load(const std::string& json, const std::string& dir = "") {
 }
 
 std::string errorOf(const std::string& json) {
-  try {
-    load(json);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "<no error>";
+  return test::errorOf<SceneError>([&] { load(json); });
 }
 
 bool hasWarning(const Scene& s, const std::string& text) {
@@ -126,7 +121,7 @@ TEST(GltfTextures, AnImageViewOutsideItsBufferIsAnError) {
   const std::string message = errorOf(d.json(meshScene(
       "{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "}}",
       "\"images\":[{\"bufferView\":" + std::to_string(view) + ",\"mimeType\":\"image/png\"}]")));
-  EXPECT_NE(message.find("image 0: buffer view 1"), std::string::npos) << message;
+  EXPECT_NE(message.find("image 0: bufferView 1"), std::string::npos) << message;
 }
 
 // A material whose slots name texture 0 (sampler 0) with the given textureInfo members.

@@ -1,5 +1,6 @@
 // Helpers the tests have in common: paths of the source tree, the model scenes and the binary.
 #pragma once
+#include <functional>
 #include <glm/glm.hpp>
 #include <string>
 #include <vector>
@@ -18,6 +19,17 @@ bool fileExists(const std::string& path);
 // see only that test's files; and the sorted names in a directory.
 std::string freshDir(const std::string& name);
 std::vector<std::string> listDir(const std::string& dir);
+
+// The message of the `Error` `f` throws, or "<no error>".
+template <typename Error>
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "<no error>";
+}
 
 // `bytes` in base64 (RFC 4648, with padding), for data URIs in glTF documents made by tests.
 std::string base64(const std::string& bytes);
