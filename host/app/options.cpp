@@ -7,14 +7,13 @@
 #include <set>
 #include <sstream>
 
+#include "aov_channels.h"
 #include "errors.h"
+#include "image_format.h"
 
 namespace gridrt {
 
 namespace {
-
-const char* const kAovNames[] = {"depth",  "primid", "normal", "geonormal",
-                                 "albedo", "tests",  "pe",     "listlen"};
 
 // The checks of every numeric option, one message each kind of mistake:
 // "expected an integer in 1..4096, got '1.5'", "expected a finite number in 0..1, got 'nan'".
@@ -322,7 +321,8 @@ void finishCrop(Options& o, const RawOptions& raw) {
   if (raw.crop.empty()) return;
   o.crop = parseCropWindow(raw.crop, o.width, o.height);
   // A window alone must say where it lies, which only formats with a data window can.
-  if (o.crop_output == CropOutput::Window && !keepsDataWindow(o.output))
+  const std::optional<ImageFormat> format = formatOfPath(o.output);
+  if (o.crop_output == CropOutput::Window && !(format && keepsDataWindow(*format)))
     throw UsageError(
         "--crop-output window: the output must be .exr, .tif or .tiff (the "
         "window's offset is kept in the file's data window), got '" +
@@ -353,9 +353,7 @@ void finish(Options& o, const RawOptions& raw) {
   for (const auto& spec : raw.aovs) {
     size_t eq = spec.find('=');
     std::string name = eq == std::string::npos ? spec : spec.substr(0, eq);
-    bool known = false;
-    for (const char* k : kAovNames) known |= name == k;
-    if (eq == std::string::npos || eq + 1 == spec.size() || !known)
+    if (eq == std::string::npos || eq + 1 == spec.size() || !isAovName(name))
       throw UsageError(
           "--aov: expected NAME=FILE with NAME one of depth, primid, normal, geonormal, "
           "albedo, tests, pe, listlen; got '" +

@@ -1,0 +1,8 @@
+// The path that means standard output (-o -, --stats-json -).
+#pragma once
+
+namespace gridrt {
+
+constexpr const char* kStandardOutput = "-";
+
+}  // namespace gridrt
