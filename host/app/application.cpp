@@ -230,7 +230,8 @@ LayeredImage croppedImage(const Options& o, LayeredImage image, float outside) {
 }
 
 void writeOutputs(const Options& o, const FrameJob& job, const Frame& frame) {
-  writeLayeredImage(job.output, croppedImage(o, filmImage(frame.film), 0.0f), OutputKind::Image);
+  writeLayeredImage(job.output, croppedImage(o, filmImage(frame.film), 0.0f), OutputKind::Image,
+                    o.format);
   for (const auto& aov : job.aovs) {
     LayeredImage image;
     image.width = frame.film.width;
@@ -463,7 +464,7 @@ int runApplication(const Options& given) {
   // Fail on bad output paths and absurd sizes before spending time on anything.
   const std::vector<FrameJob> jobs = frameJobs(given);
   for (const FrameJob& job : jobs) {
-    validateOutputPath(job.output);
+    validateOutputPath(job.output, OutputKind::Image, given.format);
     // A name the program chose replaces nothing the user did not ask it to.
     if (!given.output_named && !given.force && std::filesystem::exists(job.output))
       throw UsageError("'" + job.output + "' exists: replace it with --force, or name the " +
@@ -548,7 +549,8 @@ int runApplication(const Options& given) {
                      jobs.size() > 1
                          ? o.output + " (frames " + std::to_string(jobs.front().number) + ".." +
                                std::to_string(job.number) + ")"
-                         : job.output);
+                     : job.output == kStandardOutput ? "standard output"
+                                                     : job.output);
     }
   }
   stats["device"] = runtime.info().name;
@@ -571,7 +573,9 @@ int runApplication(const Options& given) {
                      {"peak_device_buffers_mib", double(runtime.peakBufferBytes()) / 1048576.0},
                      {"split_batches", split_batches}};
   if (!o.stats_json.empty()) writeJsonFile(o.stats_json, stats);
-  if (o.stats) std::cout << formatStatisticsTable(stats);
+  // With -o - standard output carries the image alone.
+  if (o.stats)
+    (o.output == kStandardOutput ? std::cerr : std::cout) << formatStatisticsTable(stats);
   return 0;
 }
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "renderer.h"
-#include "standard_output.h"
+#include "standard_streams.h"
 
 namespace gridrt {
 

@@ -16,7 +16,7 @@
 #include "film.h"
 #include "image_format.h"
 #include "layered_image.h"
-#include "standard_output.h"
+#include "standard_streams.h"
 
 namespace gridrt {
 
