@@ -14,6 +14,7 @@
 
 #include "adaptive_grid.h"
 #include "animated_scene.h"
+#include "aov_channels.h"
 #include "brute_intersector.h"
 #include "camera_rays.h"
 #include "choices_report.h"
@@ -39,7 +40,6 @@
 #include "texture_decoding.h"
 #include "thread_count.h"
 #include "uniform_grid.h"
-#include "window_output.h"
 
 namespace gridrt {
 
@@ -220,45 +220,39 @@ Camera chooseCamera(const Options& o, const Scene& scene, const Bounds& framing)
   return camera;
 }
 
-std::vector<float> aovData(const PrimaryAovs& a, const std::string& name, int& channels) {
-  channels = name == "normal" || name == "geonormal" || name == "albedo" ? 3 : 1;
-  if (name == "depth") return a.depth;
-  if (name == "primid") return a.primid;
-  if (name == "normal") return a.shading_normal;
-  if (name == "geonormal") return a.normal;
-  if (name == "albedo") return a.albedo;
-  if (name == "tests") return a.tests;
-  if (name == "pe") return a.pe;
-  return a.list_length;
-}
-
-// Writes one image or AOV, honouring --crop: the renderer's film holds the window's pixels
-// (the whole image without --crop); with --crop-output full they are placed in a
-// full-size image, `outside` (black, or an AOV's miss value) around it; with window, the
-// window alone at its offset (host/image/window_output.h).
-void writeCropped(const Options& o, const std::string& path, int channels, std::vector<float> data,
-                  OutputKind kind, float outside = 0.0f) {
-  if (o.crop && o.crop_output == CropOutput::Window) {
-    writeWindowImage(path, *o.crop, o.width, o.height, channels, data);
-    return;
+// An image of the film's pixels as its file holds it under --crop: the renderer's film
+// holds the window's pixels (the whole image without --crop); with --crop-output full
+// they are placed in a full-size image, `outside` (black, or an AOV's miss value) around
+// them; with window, the window alone at its offset in the file's data window.
+LayeredImage croppedImage(const Options& o, LayeredImage image, float outside) {
+  if (!o.crop) return image;
+  if (o.crop_output == CropOutput::Window) {
+    image.x = o.crop->x0;
+    image.y = o.crop->y0;
+    image.full_width = o.width;
+    image.full_height = o.height;
+    return image;
   }
-  if (o.crop) data = placeWindow(data, o.width, o.height, channels, *o.crop, outside);
-  if (kind == OutputKind::Image)
-    writeImage(path, Film{o.width, o.height, std::move(data)});
-  else
-    writeAov(path, o.width, o.height, channels, data);
+  for (ImageChannel& c : image.channels)
+    if (c.type == SampleType::Float)
+      c.floats = placeWindow(c.floats, o.width, o.height, 1, *o.crop, outside);
+    else
+      c.uints = placeWindow(c.uints, o.width, o.height, 1, *o.crop, uint32_t(int32_t(outside)));
+  image.width = o.width;
+  image.height = o.height;
+  return image;
 }
 
 void writeOutputs(const Options& o, const FrameJob& job, const Frame& frame) {
-  writeCropped(o, job.output, 3, frame.film.rgb, OutputKind::Image);
+  writeLayeredImage(job.output, croppedImage(o, filmImage(frame.film), 0.0f), OutputKind::Image,
+                    o.format);
   for (const auto& aov : job.aovs) {
-    int channels = 1;
-    std::vector<float> data = aovData(frame.aovs, aov.first, channels);
-    // Outside a crop window nothing was hit: the documented miss value of ids and depth.
-    const bool miss_is_minus_one =
-        aov.first == "primid" || aov.first == "pe" || aov.first == "depth";
-    writeCropped(o, aov.second, channels, std::move(data), OutputKind::Aov,
-                 miss_is_minus_one ? -1.0f : 0.0f);
+    LayeredImage image;
+    image.width = frame.film.width;
+    image.height = frame.film.height;
+    image.channels = aovChannels(frame.aovs, aov.first, "");
+    writeLayeredImage(aov.second, croppedImage(o, std::move(image), aovMissValue(aov.first)),
+                      OutputKind::Aov);
   }
 }
 
@@ -279,9 +273,7 @@ RenderSettings renderSettings(const Options& o) {
   settings.min_path_weight = o.min_path_weight;
   if (o.crop) settings.crop = *o.crop;   // only the window's rays are traced
   settings.want_aovs = !o.aovs.empty();  // filling them costs time per frame
-  for (const auto& aov : o.aovs)
-    settings.want_diagnostics |=
-        aov.first == "tests" || aov.first == "pe" || aov.first == "listlen";
+  for (const auto& aov : o.aovs) settings.want_diagnostics |= isDiagnosticAov(aov.first);
   return settings;
 }
 
@@ -486,7 +478,7 @@ int runApplication(const Options& given) {
   // Fail on bad output paths and absurd sizes before spending time on anything.
   const std::vector<FrameJob> jobs = frameJobs(given);
   for (const FrameJob& job : jobs) {
-    validateOutputPath(job.output);
+    validateOutputPath(job.output, OutputKind::Image, given.format);
     // A name the program chose replaces nothing the user did not ask it to.
     if (!given.output_named && !given.force && std::filesystem::exists(job.output))
       throw UsageError("'" + job.output + "' exists: replace it with --force, or name the " +
@@ -571,7 +563,8 @@ int runApplication(const Options& given) {
                      jobs.size() > 1
                          ? o.output + " (frames " + std::to_string(jobs.front().number) + ".." +
                                std::to_string(job.number) + ")"
-                         : job.output);
+                     : job.output == kStandardOutput ? "standard output"
+                                                     : job.output);
     }
   }
   stats["device"] = runtime.info().name;
@@ -594,7 +587,9 @@ int runApplication(const Options& given) {
                      {"peak_device_buffers_mib", double(runtime.peakBufferBytes()) / 1048576.0},
                      {"split_batches", split_batches}};
   if (!o.stats_json.empty()) writeJsonFile(o.stats_json, stats);
-  if (o.stats) std::cout << formatStatisticsTable(stats);
+  // With -o - standard output carries the image alone.
+  if (o.stats)
+    (o.output == kStandardOutput ? std::cerr : std::cout) << formatStatisticsTable(stats);
   return 0;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "renderer.h"
+#include "standard_streams.h"
 
 namespace gridrt {
 
@@ -42,9 +43,6 @@ nlohmann::json frameStatistics(const FramePhaseTimes& phases, const RayCounts& r
 // A readable two-column table of the JSON statistics (nested keys joined by '.').
 std::string formatStatisticsTable(const nlohmann::json& stats);
 
-// Writes JSON to path through a temporary file (never half-written).
-// "-": standard output, as Unix tools take it.
-constexpr const char* kStandardOutput = "-";
 // Writes `stats` to `path` atomically (a temporary file renamed), or to standard output.
 void writeJsonFile(const std::string& path, const nlohmann::json& stats);
 

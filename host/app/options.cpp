@@ -7,14 +7,14 @@
 #include <set>
 #include <sstream>
 
+#include "aov_channels.h"
 #include "errors.h"
+#include "image_format.h"
+#include "standard_streams.h"
 
 namespace gridrt {
 
 namespace {
-
-const char* const kAovNames[] = {"depth",  "primid", "normal", "geonormal",
-                                 "albedo", "tests",  "pe",     "listlen"};
 
 // The checks of every numeric option, one message each kind of mistake:
 // "expected an integer in 1..4096, got '1.5'", "expected a finite number in 0..1, got 'nan'".
@@ -128,7 +128,7 @@ void parseRayOffset(const std::string& text, RayOffset& offset) {
 struct RawOptions {
   std::string accel = "gridrt", grid = "auto", background, ray_offset = "robust", look_at;
   std::string crop, crop_output = "full", intersector = "mt", aa = "uniform", frames;
-  std::string shading = "phong";
+  std::string shading = "phong", format;
   std::vector<std::string> aovs;
   std::set<std::string> given;  // the options on the command line, e.g. "--spp"
 };
@@ -184,10 +184,39 @@ void checkFramePatterns(Options& o) {
   for (const auto& aov : o.aovs) FramePattern("--aov " + aov.first, aov.second);
 }
 
+// -o - writes the image to standard output in --format (png unless named), and nothing
+// else may go there. A named file's format is its extension's, which --format must name
+// too; without -o the derived name takes --format's extension.
+void finishOutputFormat(Options& o, const RawOptions& raw) {
+  if (!raw.format.empty()) o.format = formatNamed(raw.format);
+  for (const auto& aov : o.aovs)
+    if (aov.second == kStandardOutput)
+      throw UsageError("--aov " + aov.first + ": only -o can write to standard output (-)");
+  if (o.output == kStandardOutput) {
+    if (!o.format) o.format = ImageFormat::Png;
+    if (o.frames) throw UsageError("-o -: standard output takes one image, not --frames");
+    if (o.stats_json == kStandardOutput)
+      throw UsageError(
+          "--stats-json -: standard output carries the image (-o -); write the statistics to "
+          "a file");
+    return;
+  }
+  if (!o.format) return;
+  if (!o.output_named) {
+    o.output = std::filesystem::path(o.output).replace_extension(formatName(*o.format)).string();
+    return;
+  }
+  if (formatOfPath(o.output) != o.format)
+    throw UsageError("--format " + raw.format + ": -o '" + o.output +
+                     "' has another extension (drop --format, or name a ." + formatName(*o.format) +
+                     " file)");
+}
+
 // Two outputs on one path would leave only the last: refused.
 void checkDistinctOutputs(const Options& o) {
   namespace fs = std::filesystem;
-  std::vector<std::pair<std::string, std::string>> outputs{{"-o", o.output}};
+  std::vector<std::pair<std::string, std::string>> outputs;
+  if (o.output != kStandardOutput) outputs.emplace_back("-o", o.output);
   for (const auto& aov : o.aovs) outputs.emplace_back("--aov " + aov.first, aov.second);
   if (!o.stats_json.empty()) outputs.emplace_back("--stats-json", o.stats_json);
   std::error_code ec;
@@ -209,8 +238,12 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.add_option("scene", o.scene,
                  "glTF 2.0 scene (.gltf or .glb), or a mesh: OBJ, PLY, STL, ... (assimp)");
   app.add_option("-o,--output", o.output,
-                 "output image: .png/.jpg (sRGB) or .exr (linear); default SCENE.png (the "
-                 "scene's name, here), gridrt.png for the built-in scene");
+                 "output image: .png/.jpg (sRGB), .exr (linear) or - (standard output); "
+                 "default SCENE.png (the scene's name, here), else gridrt.png");
+  app.add_option("--format", raw.format,
+                 "png, jpg or exr: of -o - (default png) or the default name; -o FILE's must "
+                 "match it")
+      ->check(CLI::IsMember({"png", "jpg", "jpeg", "exr"}));
   app.add_flag("--force", o.force, "without -o, replace an existing SCENE.png");
   app.add_option("--width", o.width, "image width in pixels")
       ->capture_default_str()
@@ -323,7 +356,8 @@ void finishCrop(Options& o, const RawOptions& raw) {
   if (raw.crop.empty()) return;
   o.crop = parseCropWindow(raw.crop, o.width, o.height);
   // A window alone must say where it lies, which only formats with a data window can.
-  if (o.crop_output == CropOutput::Window && !keepsDataWindow(o.output))
+  const std::optional<ImageFormat> format = o.format ? o.format : formatOfPath(o.output);
+  if (o.crop_output == CropOutput::Window && !(format && keepsDataWindow(*format)))
     throw UsageError(
         "--crop-output window: the output must be .exr, .tif or .tiff (the "
         "window's offset is kept in the file's data window), got '" +
@@ -349,20 +383,19 @@ void finish(Options& o, const RawOptions& raw) {
     o.target = parseVec3("--look-at", raw.look_at.substr(colon + 1));
     if (*o.eye == *o.target) throw UsageError("--look-at: eye and target are the same point");
   }
-  finishCrop(o, raw);
   if (!raw.frames.empty()) o.frames = parseFrameRange(raw.frames);
   for (const auto& spec : raw.aovs) {
     size_t eq = spec.find('=');
     std::string name = eq == std::string::npos ? spec : spec.substr(0, eq);
-    bool known = false;
-    for (const char* k : kAovNames) known |= name == k;
-    if (eq == std::string::npos || eq + 1 == spec.size() || !known)
+    if (eq == std::string::npos || eq + 1 == spec.size() || !isAovName(name))
       throw UsageError(
           "--aov: expected NAME=FILE with NAME one of depth, primid, normal, geonormal, "
           "albedo, tests, pe, listlen; got '" +
           spec + "'");
     o.aovs.emplace_back(name, spec.substr(eq + 1));
   }
+  finishOutputFormat(o, raw);
+  finishCrop(o, raw);
   checkCombinations(o, raw);
   checkFramePatterns(o);
   checkDistinctOutputs(o);
@@ -390,7 +423,7 @@ std::optional<Options> parseCommandLine(int argc, const char* const* argv) {
   }
   o.size_given = app.count("--width") > 0 || app.count("--height") > 0;
   o.output_named = app.count("--output") > 0;
-  if (!o.output_named && !o.scene.empty())
+  if (!o.output_named && !o.scene.empty() && o.scene != kStandardInput)
     o.output = std::filesystem::path(o.scene).stem().string() + ".png";
   for (const CLI::Option* option : app.get_options())
     if (option->count() > 0) raw.given.insert(option->get_name());

@@ -10,6 +10,7 @@
 #include "crop_window.h"
 #include "frame_sequence.h"
 #include "gltf_brdf.h"
+#include "image_format.h"
 #include "uniform_grid.h"
 #include "whitted_shading.h"
 
@@ -18,13 +19,15 @@ namespace gridrt {
 enum class AccelKind { GridRt, Dda, Brute, Reference };
 
 struct Options {
-  std::string scene;  // glTF/glb path; empty = the built-in default scene
-  // PNG/JPEG (sRGB) or EXR (linear) by extension. Without -o: the scene's name with .png in
-  // the current folder (gridrt.png for the built-in scene), never replacing a file
-  // unless --force.
+  std::string scene;  // glTF/glb path; "-" standard input; empty = the built-in default scene
+  // PNG/JPEG (sRGB) or EXR (linear) by extension; "-": standard output, in `format`.
+  // Without -o: the scene's name with .png (--format's extension) in the current folder
+  // (gridrt.png for the built-in scene and a scene read from standard input), never
+  // replacing a file unless --force.
   std::string output = "gridrt.png";
-  bool output_named = false;  // -o given: the user asked for that file, existing or not
-  bool force = false;         // --force: a derived output may replace an existing file
+  std::optional<ImageFormat> format;  // --format; always set for -o - (default png)
+  bool output_named = false;          // -o given: the user asked for that file, existing or not
+  bool force = false;                 // --force: a derived output may replace an existing file
   int width = 640;
   int height = 480;
   // --width or --height given: the image keeps that size. Otherwise a scene camera's

@@ -1,19 +1,10 @@
 #include "crop_window.h"
 
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
 #include <regex>
 
 #include "errors.h"
 
 namespace gridrt {
-
-bool keepsDataWindow(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".exr" || ext == ".tif" || ext == ".tiff";
-}
 
 PixelWindow parseCropWindow(const std::string& text, int width, int height) {
   // At most 9 digits each, so the conversion cannot overflow an int.
@@ -28,16 +19,6 @@ PixelWindow parseCropWindow(const std::string& text, int width, int height) {
         " and Y0 < Y1 <= " + std::to_string(height) + " (half-open pixel bounds inside the " +
         std::to_string(width) + "x" + std::to_string(height) + " image)");
   return w;
-}
-
-std::vector<float> placeWindow(const std::vector<float>& window_data, int width, int height,
-                               int channels, const PixelWindow& window, float outside) {
-  std::vector<float> out(size_t(width) * height * channels, outside);
-  const size_t row = size_t(window.width()) * channels;
-  for (int y = window.y0; y < window.y1; ++y)
-    std::copy_n(window_data.begin() + size_t(y - window.y0) * row, row,
-                out.begin() + (size_t(y) * width + window.x0) * channels);
-  return out;
 }
 
 }  // namespace gridrt

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "image_output.h"
+#include "layered_image.h"
 
 namespace gridrt {
 

@@ -1,49 +1,22 @@
 #include "image_output.h"
 
-#include <OpenImageIO/color.h>
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <atomic>
-#include <cctype>
 #include <cerrno>
-#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include "errors.h"
-#include "parallel_loops.h"
+#include "image_module.h"
 
 namespace gridrt {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string lowerExtension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
-// 8-bit formats: written sRGB-encoded.
-bool isLdrFormat(const std::string& ext) {
-  return ext == ".png" || ext == ".jpg" || ext == ".jpeg";
-}
-
-// Formats that store 32-bit floats exactly.
-bool isFloatFormat(const std::string& ext) {
-  return ext == ".exr" || ext == ".tif" || ext == ".tiff";
-}
-
-// OpenImageIO messages may span lines; ours are one line.
-std::string oneLine(std::string message) {
-  while (!message.empty() && message.back() == '\n') message.pop_back();
-  std::replace(message.begin(), message.end(), '\n', ' ');
-  return message.empty() ? "unknown OpenImageIO error" : message;
-}
 
 [[noreturn]] void failWrite(const std::string& path, const std::string& reason) {
   throw RenderError("cannot write '" + path + "': " + reason);
@@ -54,34 +27,33 @@ fs::path directoryOf(const std::string& path) {
   return dir.empty() ? fs::path(".") : dir;
 }
 
-void checkSize(const std::string& path, int width, int height, int channels, size_t count) {
-  if (width <= 0 || height <= 0 || channels <= 0)
-    failWrite(path, "invalid image size " + std::to_string(width) + "x" + std::to_string(height) +
-                        " with " + std::to_string(channels) + " channels");
-  size_t expected = size_t(width) * size_t(height) * size_t(channels);
-  if (count != expected)
-    failWrite(path, "image is " + std::to_string(width) + "x" + std::to_string(height) + " with " +
-                        std::to_string(channels) + " channels but has " + std::to_string(count) +
-                        " values (expected " + std::to_string(expected) + ")");
+std::string extensionShown(const std::string& path) {
+  const std::string ext = fs::path(path).extension().string();
+  return ext.empty() ? "(none)" : "'" + ext + "'";
 }
 
-OIIO::ImageBuf makeBuffer(int width, int height, int channels, const float* data) {
-  OIIO::ImageBuf buf(OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::FLOAT));
-  buf.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, data);
-  return buf;
+void writeToStandardOutput(const std::vector<unsigned char>& bytes) {
+  if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size() ||
+      std::fflush(stdout) != 0)
+    throw RenderError(std::string("cannot write to standard output: ") + std::strerror(errno));
 }
 
-// Writes `buf` as `format` to a hidden sibling of `path` that keeps its extension (so
-// OpenImageIO picks the file format from it), then renames it onto `path`. On failure the
-// temporary file is removed and whatever was at `path` stays as it was.
-void writeAtomically(const std::string& path, const OIIO::ImageBuf& buf, OIIO::TypeDesc format) {
+// `bytes` to a hidden sibling of `path`, then renamed onto it. On failure the temporary
+// file is removed and whatever was at `path` stays as it was.
+void writeAtomically(const std::string& path, const std::vector<unsigned char>& bytes) {
   static std::atomic<unsigned> counter{0};  // distinct names for concurrent writers
   const fs::path target(path);
   const fs::path temp =
-      directoryOf(path) / ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) +
-                           "-" + std::to_string(counter++) + target.extension().string());
+      directoryOf(path) / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()) +
+                           "-" + std::to_string(counter++));
   try {
-    if (!buf.write(temp.string(), format)) failWrite(path, oneLine(buf.geterror()));
+    {
+      std::ofstream out(temp, std::ios::binary);
+      if (!out) failWrite(path, std::strerror(errno));
+      out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+      out.close();
+      if (!out) failWrite(path, std::strerror(errno));
+    }
     if (std::rename(temp.c_str(), path.c_str()) != 0) failWrite(path, std::strerror(errno));
   } catch (...) {
     std::error_code ignored;
@@ -92,13 +64,18 @@ void writeAtomically(const std::string& path, const OIIO::ImageBuf& buf, OIIO::T
 
 }  // namespace
 
-void validateOutputPath(const std::string& path, OutputKind kind) {
-  const std::string ext = lowerExtension(path);
-  const std::string shown = ext.empty() ? "(none)" : "'" + ext + "'";
-  if (kind == OutputKind::Aov && !isFloatFormat(ext))
+ImageFormat validateOutputPath(const std::string& path, OutputKind kind,
+                               std::optional<ImageFormat> format) {
+  const bool to_stdout = path == kStandardOutput;
+  if (to_stdout && !format) failWrite(path, "standard output needs a format named");
+  if (!format) format = formatOfPath(path);
+  const std::string shown = to_stdout ? "'" + formatName(*format) + "'" : extensionShown(path);
+  if (kind == OutputKind::Layers && format != ImageFormat::Exr)
+    failWrite(path, "unsupported multi-layer format " + shown + " (use .exr)");
+  if (kind == OutputKind::Aov && !(format && keepsFloats(*format)))
     failWrite(path, "unsupported AOV format " + shown + " (use .exr)");
-  if (kind == OutputKind::Image && !isLdrFormat(ext) && !isFloatFormat(ext) && ext != ".hdr")
-    failWrite(path, "unsupported output format " + shown + " (use .png, .jpg or .exr)");
+  if (!format) failWrite(path, "unsupported output format " + shown + " (use .png, .jpg or .exr)");
+  if (to_stdout) return *format;
 
   const fs::path dir = directoryOf(path);
   std::error_code ec;
@@ -107,49 +84,77 @@ void validateOutputPath(const std::string& path, OutputKind kind) {
   if (::access(dir.c_str(), W_OK) != 0)
     failWrite(path, "directory '" + dir.string() + "' is not writable: " + std::strerror(errno));
   if (fs::is_directory(path, ec)) failWrite(path, "it is a directory");
+  return *format;
 }
 
-void writeImage(const std::string& path, const Film& film) {
-  checkSize(path, film.width, film.height, 3, film.rgb.size());
-  validateOutputPath(path, OutputKind::Image);
-  if (!isLdrFormat(lowerExtension(path))) {
-    writeAtomically(path, makeBuffer(film.width, film.height, 3, film.rgb.data()),
-                    OIIO::TypeDesc::FLOAT);
-    return;
+void writeLayeredImage(const std::string& path, const LayeredImage& image, OutputKind kind,
+                       std::optional<ImageFormat> format) {
+  const ImageFormat chosen = validateOutputPath(path, kind, format);
+  std::vector<unsigned char> bytes;
+  try {
+    bytes = imageCodec().encode(image, formatName(chosen));
+  } catch (const RenderError& e) {
+    failWrite(path, e.what());
   }
-  // OpenImageIO writes floats to 8-bit formats without any transfer function, so encode
-  // sRGB here (OpenImageIO's own formula), after clamping to the displayable range, in one
-  // pass on all cores straight into the buffer OpenImageIO writes from.
-  std::vector<float> srgb(film.rgb.size());
-  const long long count = (long long)srgb.size();
-  parallelFor(0LL, (long long)(count), [&](long long k) {
-    const float v = film.rgb[k];
-    srgb[k] = OIIO::linear_to_sRGB(std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f));
-  });
-  const OIIO::ImageBuf encoded(OIIO::ImageSpec(film.width, film.height, 3, OIIO::TypeDesc::FLOAT),
-                               srgb.data());
-  writeAtomically(path, encoded, OIIO::TypeDesc::UINT8);
+  if (path == kStandardOutput)
+    writeToStandardOutput(bytes);
+  else
+    writeAtomically(path, bytes);
+}
+
+LayeredImage filmImage(const Film& film) {
+  LayeredImage image;
+  image.width = film.width;
+  image.height = film.height;
+  for (int c = 0; c < 3; ++c)
+    image.channels.push_back(floatChannel(std::string(1, "RGB"[c]), film.rgb, 3, c));
+  if (!film.alpha.empty()) image.channels.push_back({"A", SampleType::Float, film.alpha, {}});
+  for (int c = 0; c < 3; ++c) image.background[c] = film.background[c];
+  return image;
+}
+
+void writeImage(const std::string& path, const Film& film, std::optional<ImageFormat> format) {
+  if (film.rgb.size() != size_t(std::max(film.width, 0)) * size_t(std::max(film.height, 0)) * 3)
+    failWrite(path, "image is " + std::to_string(film.width) + "x" + std::to_string(film.height) +
+                        " with 3 channels but has " + std::to_string(film.rgb.size()) + " values");
+  writeLayeredImage(path, filmImage(film), OutputKind::Image, format);
 }
 
 void writeAov(const std::string& path, int width, int height, int channels,
               const std::vector<float>& data) {
-  checkSize(path, width, height, channels, data.size());
-  validateOutputPath(path, OutputKind::Aov);
-  writeAtomically(path, makeBuffer(width, height, channels, data.data()), OIIO::TypeDesc::FLOAT);
+  if (channels <= 0 || data.size() != size_t(std::max(width, 0)) * std::max(height, 0) * channels)
+    failWrite(path, "image is " + std::to_string(width) + "x" + std::to_string(height) + " with " +
+                        std::to_string(channels) + " channels but has " +
+                        std::to_string(data.size()) + " values");
+  LayeredImage image;
+  image.width = width;
+  image.height = height;
+  for (int c = 0; c < channels; ++c) {
+    const std::string name = channels == 1   ? std::string("Y")
+                             : channels == 3 ? std::string(1, "RGB"[c])
+                                             : "C" + std::to_string(c);
+    image.channels.push_back(floatChannel(name, data, channels, c));
+  }
+  writeLayeredImage(path, image, OutputKind::Aov);
 }
 
+LayeredImage readLayeredImage(const std::string& path) { return imageCodec().read(path); }
+
 ImageData readImage(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw RenderError("cannot read '" + path + "': " + oneLine(OIIO::geterror()));
-  const OIIO::ImageSpec& spec = in->spec();
-  ImageData image;
-  image.width = spec.width;
-  image.height = spec.height;
-  image.channels = spec.nchannels;
-  image.pixels.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
-    throw RenderError("cannot read '" + path + "': " + oneLine(in->geterror()));
-  return image;
+  const LayeredImage image = readLayeredImage(path);
+  ImageData data;
+  data.width = image.width;
+  data.height = image.height;
+  data.channels = int(image.channels.size());
+  const size_t pixels = size_t(image.width) * size_t(image.height);
+  data.pixels.resize(pixels * image.channels.size());
+  for (size_t c = 0; c < image.channels.size(); ++c) {
+    const ImageChannel& channel = image.channels[c];
+    for (size_t p = 0; p < pixels; ++p)
+      data.pixels[p * data.channels + c] =
+          channel.type == SampleType::UInt ? float(int32_t(channel.uints[p])) : channel.floats[p];
+  }
+  return data;
 }
 
 }  // namespace gridrt

@@ -33,6 +33,15 @@ std::string fileBytes(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
+// A film of linear RGB values without alpha.
+Film rgbFilm(int width, int height, std::vector<float> rgb) {
+  Film film;
+  film.width = width;
+  film.height = height;
+  film.rgb = std::move(rgb);
+  return film;
+}
+
 // Runs `write`, expects a RenderError and returns its message.
 template <class F>
 std::string renderErrorOf(F write) {
@@ -50,7 +59,7 @@ std::string renderErrorOf(F write) {
 TEST(ImageOutput, PngRoundTripAppliesSrgbEncodingAndClamps) {
   const std::string path = freshDir("png") + "/out.png";
   // Pixels: (0.5, 0, 1) and (2, -1, NaN): out-of-range values clamp, NaN becomes black.
-  Film film{2, 1, {0.5f, 0.0f, 1.0f, 2.0f, -1.0f, std::nanf("")}};
+  Film film = rgbFilm(2, 1, {0.5f, 0.0f, 1.0f, 2.0f, -1.0f, std::nanf("")});
   gridrt::writeImage(path, film);
 
   ImageData img = gridrt::readImage(path);
@@ -72,7 +81,7 @@ constexpr double kCodeBoundaryGuard = 1e-4;
 TEST(ImageOutput, PngCodesAreTheExactSrgbEncodingRounded) {
   const std::string path = freshDir("png_exact") + "/ramp.png";
   const int width = 1024, height = 512;
-  Film film{width, height, std::vector<float>(size_t(3) * width * height)};
+  Film film = rgbFilm(width, height, std::vector<float>(size_t(3) * width * height));
   const size_t n = film.rgb.size();
   for (size_t k = 0; k < n; ++k) {  // every level of [0, 1], the darks densely (a square ramp)
     const double x = double(k) / double(n - 1);
@@ -96,7 +105,7 @@ TEST(ImageOutput, PngCodesAreTheExactSrgbEncodingRounded) {
 
 TEST(ImageOutput, JpegIsSrgbEncodedToo) {
   const std::string path = freshDir("jpg") + "/out.jpg";
-  Film film{8, 8, std::vector<float>(3 * 8 * 8, 0.5f)};
+  Film film = rgbFilm(8, 8, std::vector<float>(3 * 8 * 8, 0.5f));
   gridrt::writeImage(path, film);
 
   ImageData img = gridrt::readImage(path);
@@ -106,10 +115,9 @@ TEST(ImageOutput, JpegIsSrgbEncodedToo) {
 
 TEST(ImageOutput, ExrKeepsLinearFloatsExactly) {
   const std::string path = freshDir("exr") + "/out.exr";
-  Film film{
-      2,
-      2,
-      {0.1f, 0.5f, 1.0f, 2.75f, 1e-4f, 123.456f, -0.5f, 0.0f, 1e6f, 0.333333f, 7.0f, 0.7354f}};
+  Film film = rgbFilm(
+      2, 2,
+      {0.1f, 0.5f, 1.0f, 2.75f, 1e-4f, 123.456f, -0.5f, 0.0f, 1e6f, 0.333333f, 7.0f, 0.7354f});
   gridrt::writeImage(path, film);
 
   ImageData img = gridrt::readImage(path);
@@ -145,7 +153,7 @@ TEST(ImageOutput, ThreeChannelAovRoundTripIsExact) {
 TEST(ImageOutput, UnsupportedExtensionIsRejectedNamingTheFile) {
   const std::string dir = freshDir("ext");
   const std::string path = dir + "/out.xyz";
-  Film film{1, 1, {0.5f, 0.5f, 0.5f}};
+  Film film = rgbFilm(1, 1, {0.5f, 0.5f, 0.5f});
 
   std::string message = renderErrorOf([&] { gridrt::writeImage(path, film); });
   EXPECT_NE(message.find("'" + path + "'"), std::string::npos) << message;
@@ -169,7 +177,7 @@ TEST(ImageOutput, ValidateOutputPathAcceptsSupportedFormats) {
 
 TEST(ImageOutput, MissingDirectoryIsRejectedBeforeWriting) {
   const std::string path = freshDir("missing") + "/no/such/dir/out.png";
-  Film film{1, 1, {0.5f, 0.5f, 0.5f}};
+  Film film = rgbFilm(1, 1, {0.5f, 0.5f, 0.5f});
 
   std::string message = renderErrorOf([&] { gridrt::writeImage(path, film); });
   EXPECT_EQ(message.rfind("cannot write '" + path + "': ", 0), 0u) << message;
@@ -182,14 +190,14 @@ TEST(ImageOutput, MissingDirectoryIsRejectedBeforeWriting) {
 TEST(ImageOutput, FailedWriteLeavesPreviousFileUntouched) {
   const std::string dir = freshDir("untouched");
   const std::string path = dir + "/out.png";
-  gridrt::writeImage(path, Film{2, 2, std::vector<float>(12, 0.25f)});
+  gridrt::writeImage(path, rgbFilm(2, 2, std::vector<float>(12, 0.25f)));
   const std::string before = fileBytes(path);
   ASSERT_FALSE(before.empty());
 
-  Film inconsistent{2, 2, std::vector<float>(11, 1.0f)};  // one value short
+  Film inconsistent = rgbFilm(2, 2, std::vector<float>(11, 1.0f));  // one value short
   std::string message = renderErrorOf([&] { gridrt::writeImage(path, inconsistent); });
   EXPECT_NE(message.find("'" + path + "'"), std::string::npos) << message;
-  EXPECT_THROW(gridrt::writeImage(path, Film{0, 2, {}}), RenderError);
+  EXPECT_THROW(gridrt::writeImage(path, rgbFilm(0, 2, {})), RenderError);
   EXPECT_THROW(gridrt::writeAov(path + ".exr", 2, 2, 1, {1.0f}), RenderError);
 
   EXPECT_EQ(fileBytes(path), before);
@@ -198,7 +206,7 @@ TEST(ImageOutput, FailedWriteLeavesPreviousFileUntouched) {
 
 TEST(ImageOutput, NoTemporaryFilesLeftAfterSuccessOrFailure) {
   const std::string dir = freshDir("temps");
-  Film film{4, 3, std::vector<float>(36, 0.5f)};
+  Film film = rgbFilm(4, 3, std::vector<float>(36, 0.5f));
   gridrt::writeImage(dir + "/a.png", film);
   gridrt::writeImage(dir + "/a.png", film);  // overwriting an existing file
   gridrt::writeImage(dir + "/b.exr", film);
@@ -206,7 +214,7 @@ TEST(ImageOutput, NoTemporaryFilesLeftAfterSuccessOrFailure) {
   fs::create_directory(dir + "/d.png");  // a directory where the image should go
   EXPECT_THROW(gridrt::writeImage(dir + "/d.png", film), RenderError);
   EXPECT_THROW(gridrt::writeImage(dir + "/e.xyz", film), RenderError);
-  EXPECT_THROW(gridrt::writeImage(dir + "/f.png", Film{4, 3, {}}), RenderError);
+  EXPECT_THROW(gridrt::writeImage(dir + "/f.png", rgbFilm(4, 3, {})), RenderError);
 
   EXPECT_EQ(listDir(dir), (std::vector<std::string>{"a.png", "b.exr", "c.exr", "d.png"}));
 }

@@ -209,7 +209,7 @@ TEST(Tiles, EightBitOutputOfNonRgbTilesIsRefused) {
   const std::string merged = tempPath("aov_merged.png");
   CommandResult r = runCommand({mergeTilesBinary(), merged, depth});
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("needs RGB tiles"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("needs float channels R, G and B"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(merged));
 }
 

@@ -1,5 +1,6 @@
 // Running a program as a subprocess from a test: argv without a shell (no quoting
-// problems), stdout and stderr captured through files, the exit code or the signal.
+// problems), standard input from a file (/dev/null unless given), stdout and stderr
+// captured through files, the exit code or the signal.
 #pragma once
 #include <fcntl.h>
 #include <spawn.h>
@@ -31,13 +32,14 @@ inline std::string readWholeFile(const std::string& path) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-inline CommandResult runCommand(const std::vector<std::string>& argv) {
+inline CommandResult runCommand(const std::vector<std::string>& argv,
+                                const std::string& stdin_path = "/dev/null") {
   static int counter = 0;
   const std::string base = tempPath("cmd" + std::to_string(counter++));
   const std::string out_path = base + ".out", err_path = base + ".err";
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 0, stdin_path.c_str(), O_RDONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
                                    0644);
   posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,

@@ -1,0 +1,29 @@
+#include "aov_channels.h"
+
+#include "renderer.h"
+
+namespace gridrt {
+
+std::vector<ImageChannel> aovChannels(const PrimaryAovs& aovs, const std::string& name,
+                                      const std::string& prefix) {
+  const bool three = name == "normal" || name == "geonormal" || name == "albedo";
+  const std::vector<float>& data = name == "depth"       ? aovs.depth
+                                   : name == "primid"    ? aovs.primid
+                                   : name == "normal"    ? aovs.shading_normal
+                                   : name == "geonormal" ? aovs.normal
+                                   : name == "albedo"    ? aovs.albedo
+                                   : name == "tests"     ? aovs.tests
+                                   : name == "pe"        ? aovs.pe
+                                                         : aovs.list_length;
+  if (!three) return {floatChannel(prefix + "Y", data, 1, 0)};
+  std::vector<ImageChannel> channels;
+  for (int c = 0; c < 3; ++c)
+    channels.push_back(floatChannel(prefix + std::string(1, "RGB"[c]), data, 3, c));
+  return channels;
+}
+
+float aovMissValue(const std::string& name) {
+  return name == "primid" || name == "pe" || name == "depth" ? -1.0f : 0.0f;
+}
+
+}  // namespace gridrt

@@ -1,0 +1,249 @@
+// The image module (image_codec.h): every image gridrt writes or reads goes through
+// OpenImageIO here, encoded to memory (OpenImageIO's IOVecOutput) and decoded from files
+// or memory. Built as a shared module that image_module.h loads on first use.
+#include <OpenImageIO/color.h>
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "errors.h"
+#include "image_codec.h"
+#include "parallel_loops.h"
+
+namespace gridrt {
+namespace {
+
+// OpenImageIO messages may span lines; ours are one line.
+std::string oneLine(std::string message) {
+  while (!message.empty() && message.back() == '\n') message.pop_back();
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  return message.empty() ? "unknown OpenImageIO error" : message;
+}
+
+[[noreturn]] void fail(const std::string& reason) { throw RenderError(reason); }
+
+void checkImage(const LayeredImage& image) {
+  if (image.width <= 0 || image.height <= 0 || image.channels.empty())
+    fail("invalid image size " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+         " with " + std::to_string(image.channels.size()) + " channels");
+  const size_t expected = size_t(image.width) * size_t(image.height);
+  for (const ImageChannel& c : image.channels)
+    if (c.size() != expected)
+      fail("image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+           " but channel '" + c.name + "' has " + std::to_string(c.size()) + " values (expected " +
+           std::to_string(expected) + ")");
+}
+
+// The encoder for `format`, writing into `bytes` through OpenImageIO's memory proxy.
+std::vector<unsigned char> encodeToMemory(const std::string& format, const OIIO::ImageSpec& spec,
+                                          OIIO::TypeDesc type, const void* pixels) {
+  const std::string name = "image." + format;  // the extension picks the encoder
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(name);
+  if (!out) fail(oneLine(OIIO::geterror()));
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput proxy(bytes);
+  if (!out->set_ioproxy(&proxy)) fail(format + " cannot be written to memory");
+  if (!out->open(name, spec) || !out->write_image(type, pixels) || !out->close())
+    fail(oneLine(out->geterror()));
+  return bytes;
+}
+
+const ImageChannel& colourChannel(const LayeredImage& image, const char* name) {
+  const int c = channelIndex(image, name);
+  if (c < 0 || image.channels[c].type != SampleType::Float)
+    fail("an 8-bit image needs float channels R, G and B");
+  return image.channels[c];
+}
+
+// PNG and JPEG: sRGB-encoded after clamping to [0, 1] (NaN as 0), with OpenImageIO's own
+// formula, in one pass on all cores. A PNG with alpha stores its colour unassociated, as
+// PNG defines it: where a pixel is partly covered (0 < alpha < 1), the colour less the
+// background's share, divided by alpha, so that laid over the render's background it gives
+// the rendered colour again; covered and uncovered pixels keep their colour as rendered.
+std::vector<unsigned char> encodeEightBit(const LayeredImage& image, const std::string& format) {
+  if (image.x != 0 || image.y != 0 ||
+      (image.full_width && (image.full_width != image.width || image.full_height != image.height)))
+    fail("an 8-bit image cannot hold a window of a larger one (use .exr)");
+  const ImageChannel* rgb[3] = {&colourChannel(image, "R"), &colourChannel(image, "G"),
+                                &colourChannel(image, "B")};
+  const int a = channelIndex(image, "A");
+  const bool alpha = format == "png" && a >= 0;
+  if (alpha && image.channels[a].type != SampleType::Float) fail("alpha must be a float channel");
+  const int nc = alpha ? 4 : 3;
+  const long long pixels = (long long)image.width * image.height;
+  std::vector<float> encoded(size_t(pixels) * nc);
+  parallelFor(0LL, pixels, [&](long long p) {
+    float coverage = 1.0f;
+    if (alpha) {
+      const float value = image.channels[a].floats[p];
+      coverage = std::isnan(value) ? 0.0f : std::clamp(value, 0.0f, 1.0f);
+      encoded[size_t(p) * 4 + 3] = coverage;
+    }
+    for (int c = 0; c < 3; ++c) {
+      float v = rgb[c]->floats[p];
+      if (coverage > 0.0f && coverage < 1.0f)
+        v = (v - (1.0f - coverage) * image.background[c]) / coverage;
+      encoded[size_t(p) * nc + c] =
+          OIIO::linear_to_sRGB(std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f));
+    }
+  });
+  OIIO::ImageSpec spec(image.width, image.height, nc, OIIO::TypeDesc::UINT8);
+  if (alpha) {
+    spec.alpha_channel = 3;
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // as computed: OpenImageIO must not divide
+  }
+  return encodeToMemory(format, spec, OIIO::TypeDesc::FLOAT, encoded.data());
+}
+
+OIIO::TypeDesc typeOf(SampleType type) {
+  return type == SampleType::UInt ? OIIO::TypeDesc::UINT32 : OIIO::TypeDesc::FLOAT;
+}
+
+// EXR, TIFF and HDR: every channel's 32-bit values as they are (HDR: R, G, B only), with
+// the data window.
+std::vector<unsigned char> encodeChannels(const LayeredImage& image, const std::string& format) {
+  std::vector<const ImageChannel*> channels;
+  if (format == "hdr") {
+    for (const char* name : {"R", "G", "B"}) channels.push_back(&colourChannel(image, name));
+  } else {
+    for (const ImageChannel& c : image.channels) channels.push_back(&c);
+  }
+  const int nc = int(channels.size());
+  OIIO::ImageSpec spec(image.width, image.height, nc, typeOf(channels[0]->type));
+  spec.x = image.x;
+  spec.y = image.y;
+  spec.full_x = spec.full_y = 0;
+  spec.full_width = image.full_width ? image.full_width : image.width;
+  spec.full_height = image.full_width ? image.full_height : image.height;
+  spec.channelnames.clear();
+  bool mixed = false;
+  for (const ImageChannel* c : channels) {
+    spec.channelnames.push_back(c->name);
+    mixed |= c->type != channels[0]->type;
+  }
+  if (mixed) {
+    if (format != "exr") fail("channels of different types need .exr");
+    for (const ImageChannel* c : channels) spec.channelformats.push_back(typeOf(c->type));
+  }
+  if (format == "hdr" && channels[0]->type != SampleType::Float) fail("HDR holds floats only");
+  spec.alpha_channel = format == "hdr" ? -1 : channelIndex(image, "A");
+  if (spec.alpha_channel >= 0)
+    spec.attribute("gridrt:background", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::VEC3),
+                   image.background.data());
+  // Interleaved, each value as its 32 bits.
+  const size_t pixels = size_t(image.width) * size_t(image.height);
+  std::vector<uint32_t> data(pixels * nc);
+  parallelFor(0LL, (long long)pixels, [&](long long p) {
+    for (int c = 0; c < nc; ++c) {
+      uint32_t& to = data[size_t(p) * nc + c];
+      if (channels[c]->type == SampleType::UInt)
+        to = channels[c]->uints[p];
+      else
+        std::memcpy(&to, &channels[c]->floats[p], 4);
+    }
+  });
+  return encodeToMemory(format, spec, mixed ? OIIO::TypeDesc::UNKNOWN : spec.format, data.data());
+}
+
+std::vector<unsigned char> encode(const LayeredImage& image, const std::string& format) {
+  checkImage(image);
+  if (format == "png" || format == "jpg") return encodeEightBit(image, format);
+  if (format == "exr" || format == "tif" || format == "hdr") return encodeChannels(image, format);
+  fail("unsupported format '" + format + "'");
+}
+
+LayeredImage read(const std::string& path) {
+  auto fail_read = [&](const std::string& why) { fail("cannot read '" + path + "': " + why); };
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
+  if (!in) fail_read(oneLine(OIIO::geterror()));
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.depth > 1) fail_read("a volume image; gridrt reads flat images only");
+  LayeredImage image;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.x = spec.x - spec.full_x;
+  image.y = spec.y - spec.full_y;
+  image.full_width = spec.full_width;
+  image.full_height = spec.full_height;
+  const size_t pixels = size_t(spec.width) * size_t(spec.height);
+  for (int c = 0; c < spec.nchannels; ++c) {
+    const OIIO::TypeDesc stored = spec.channelformat(c);
+    const bool integer = stored == OIIO::TypeDesc::UINT32 || stored == OIIO::TypeDesc::INT32;
+    ImageChannel channel{
+        spec.channel_name(c), integer ? SampleType::UInt : SampleType::Float, {}, {}};
+    void* to = nullptr;
+    if (integer) {
+      channel.uints.resize(pixels);
+      to = channel.uints.data();
+    } else {
+      channel.floats.resize(pixels);
+      to = channel.floats.data();
+    }
+    // Integers keep their 32 bits (an INT32 as the same bits); the rest become floats.
+    if (!in->read_image(0, 0, c, c + 1, integer ? stored : OIIO::TypeDesc::FLOAT, to))
+      fail_read(oneLine(in->geterror()));
+    image.channels.push_back(std::move(channel));
+  }
+  const OIIO::ParamValue* background = spec.find_attribute("gridrt:background");
+  if (background &&
+      background->type() == OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::VEC3))
+    std::memcpy(image.background.data(), background->data(), sizeof image.background);
+  return image;
+}
+
+bool startsWith(const std::vector<unsigned char>& bytes, const char* signature, size_t n) {
+  return bytes.size() >= n && std::memcmp(bytes.data(), signature, n) == 0;
+}
+
+// A file name whose extension makes OpenImageIO pick the decoder.
+std::string decoderName(const std::vector<unsigned char>& bytes, const std::string& hint) {
+  if (startsWith(bytes, "\x89PNG\r\n\x1a\n", 8)) return "image.png";
+  if (startsWith(bytes, "\xff\xd8\xff", 3)) return "image.jpg";
+  const size_t slash = hint.rfind('/');
+  if (hint.rfind("image/", 0) == 0) return "image." + hint.substr(slash + 1);  // a MIME type
+  return hint.empty() ? "image" : hint;
+}
+
+ImageData decode(const std::vector<unsigned char>& bytes, const std::string& format_hint,
+                 const std::string& label, long long max_pixels) {
+  auto refuse = [&](const std::string& why) -> ImageData {
+    throw RenderError(label + ": cannot decode the image: " + why);
+  };
+  if (bytes.empty()) return refuse("it has no data");
+  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+  // glTF's colours are not premultiplied by their alpha: read them as stored.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  // With a configuration the readers take the proxy from it, not from the argument.
+  OIIO::Filesystem::IOProxy* proxy = &reader;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  auto in = OIIO::ImageInput::open(decoderName(bytes, format_hint), &config, &reader);
+  if (!in) return refuse(oneLine(OIIO::geterror()));
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) return refuse("it has no pixels");
+  if ((long long)spec.width * spec.height > max_pixels)
+    return refuse(std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                  " pixels is more than the limit of " + std::to_string(max_pixels));
+  ImageData image;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.nchannels;
+  image.pixels.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
+    return refuse(oneLine(in->geterror()));
+  return image;
+}
+
+float srgbToLinear(float encoded) { return OIIO::sRGB_to_linear(encoded); }
+
+}  // namespace
+}  // namespace gridrt
+
+extern "C" __attribute__((visibility("default"))) const gridrt::ImageCodec* gridrt_image_codec() {
+  static const gridrt::ImageCodec codec{&gridrt::encode, &gridrt::read, &gridrt::decode,
+                                        &gridrt::srgbToLinear};
+  return &codec;
+}

@@ -1,0 +1,46 @@
+#include "image_module.h"
+
+#include <dlfcn.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "errors.h"
+
+namespace gridrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+const ImageCodec* loadCodec() {
+  std::vector<std::string> candidates;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) candidates.push_back((exe.parent_path() / GRIDRT_IMAGE_CODEC_FILE).string());
+  candidates.push_back(GRIDRT_IMAGE_CODEC_PATH);
+  std::string why;
+  for (const std::string& path : candidates) {
+    if (!fs::exists(path, ec)) continue;
+    void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!module) {
+      why = dlerror();
+      continue;
+    }
+    auto entry = reinterpret_cast<const ImageCodec* (*)()>(dlsym(module, GRIDRT_IMAGE_CODEC_ENTRY));
+    if (entry) return entry();
+    why = path + ": no " + GRIDRT_IMAGE_CODEC_ENTRY;
+  }
+  if (why.empty()) why = "not found beside the executable nor at " GRIDRT_IMAGE_CODEC_PATH;
+  throw RenderError("cannot load the image module " GRIDRT_IMAGE_CODEC_FILE ": " + why);
+}
+
+}  // namespace
+
+const ImageCodec& imageCodec() {
+  // Loaded once, on the first image read or written; the module stays for the process.
+  static const ImageCodec* const codec = loadCodec();
+  return *codec;
+}
+
+}  // namespace gridrt

@@ -1,0 +1,12 @@
+// The image module (image_codec.h), loaded with dlopen on first use and kept for the life
+// of the process. It is looked for beside the running executable (a relocated gridrt
+// carries it along), then where the build put it.
+#pragma once
+#include "image_codec.h"
+
+namespace gridrt {
+
+// Loads the module the first time; throws RenderError naming the file when it cannot.
+const ImageCodec& imageCodec();
+
+}  // namespace gridrt
