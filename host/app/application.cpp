@@ -160,8 +160,10 @@ SceneSource loadScene(const Options& o, const FrameJob& first, Scene& first_scen
       throw UsageError("--animation '" + o.animation + "': " + o.scene +
                        " is read without animations");
     first_scene = importMeshFile(o.scene);
-    if (posed) source.warnings.push_back(o.scene + " is read without animations: --time/--frames "
-                                         "render it as it is");
+    if (posed)
+      source.warnings.push_back(o.scene +
+                                " is read without animations: --time/--frames "
+                                "render it as it is");
     return source;
   }
   GltfDocument document = GltfDocument::fromFile(o.scene);

@@ -121,8 +121,8 @@ const unsigned char* viewBytes(const tinygltf::Model& model, int view_index, siz
   const tinygltf::BufferView& view = model.bufferViews[size_t(view_index)];
   const std::string view_name = "bufferView " + std::to_string(view_index);
   if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
-    fail(label, where + ": " + view_name + ": buffer " + std::to_string(view.buffer) +
-                    " does not exist");
+    fail(label,
+         where + ": " + view_name + ": buffer " + std::to_string(view.buffer) + " does not exist");
   const std::vector<unsigned char>& buffer = model.buffers[size_t(view.buffer)].data;
   auto view_end = accessorEnd(view.byteOffset, 0, 1, view.byteLength);
   if (!view_end || *view_end > buffer.size())

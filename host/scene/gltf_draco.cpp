@@ -47,13 +47,13 @@ const tinygltf::Accessor& fileAccessor(const Context& c, int index, const std::s
 // Every point's value of `attribute` as `components` values of type T (Draco converts,
 // and refuses values T cannot hold).
 template <typename T>
-bool convertValues(const draco::Mesh& mesh, const draco::PointAttribute& attribute,
-                   int components, std::vector<unsigned char>& out) {
+bool convertValues(const draco::Mesh& mesh, const draco::PointAttribute& attribute, int components,
+                   std::vector<unsigned char>& out) {
   out.resize(size_t(mesh.num_points()) * size_t(components) * sizeof(T));
   T* values = reinterpret_cast<T*>(out.data());
   for (uint32_t p = 0; p < mesh.num_points(); ++p)
-    if (!attribute.ConvertValue<T>(attribute.mapped_index(draco::PointIndex(p)),
-                                   int8_t(components), values + size_t(p) * size_t(components)))
+    if (!attribute.ConvertValue<T>(attribute.mapped_index(draco::PointIndex(p)), int8_t(components),
+                                   values + size_t(p) * size_t(components)))
       return false;
   return true;
 }
@@ -94,8 +94,7 @@ int decodedAttribute(const Context& c, const std::string& semantic, int index,
     default:
       c.fail(name + ": unsupported component type " + std::to_string(accessor.componentType));
   }
-  if (!ok)
-    c.fail(name + ": the Draco values do not fit " + componentName(accessor.componentType));
+  if (!ok) c.fail(name + ": the Draco values do not fit " + componentName(accessor.componentType));
   return addDecodedAccessor(c.model, accessor, std::move(bytes));
 }
 

@@ -44,17 +44,16 @@ CompressedView readExtension(const tinygltf::Value& ext, const std::string& wher
 }
 
 // The specification's rules on the extension object, in its order.
-void checkRules(const CompressedView& c, const tinygltf::BufferView& view,
-                const std::string& where, const std::string& label) {
+void checkRules(const CompressedView& c, const tinygltf::BufferView& view, const std::string& where,
+                const std::string& label) {
   auto broken = [&](const std::string& what) { fail(label, where + ": " + what); };
   if (view.byteStride != 0 && view.byteStride != c.byte_stride)
     broken("byteStride " + std::to_string(c.byte_stride) + " differs from the bufferView's " +
            std::to_string(view.byteStride));
   uint64_t decoded = 0;
   if (__builtin_mul_overflow(c.byte_stride, c.count, &decoded) || decoded != view.byteLength)
-    broken("count " + std::to_string(c.count) + " * byteStride " +
-           std::to_string(c.byte_stride) + " differs from the bufferView's byteLength " +
-           std::to_string(view.byteLength));
+    broken("count " + std::to_string(c.count) + " * byteStride " + std::to_string(c.byte_stride) +
+           " differs from the bufferView's byteLength " + std::to_string(view.byteLength));
   if (c.mode == "ATTRIBUTES") {
     if (c.byte_stride == 0 || c.byte_stride % 4 != 0 || c.byte_stride > 256)
       broken("ATTRIBUTES need a byteStride divisible by 4, at most 256, not " +
@@ -120,9 +119,8 @@ void decodeMeshoptViews(tinygltf::Model& model, const std::string& label) {
     const std::vector<unsigned char>& source = model.buffers[c.buffer].data;
     if (c.byte_offset > source.size() || c.byte_length > source.size() - c.byte_offset)
       fail(label, where + ": bytes " + std::to_string(c.byte_offset) + " + " +
-                      std::to_string(c.byte_length) + " exceed buffer " +
-                      std::to_string(c.buffer) + " of " + std::to_string(source.size()) +
-                      " bytes");
+                      std::to_string(c.byte_length) + " exceed buffer " + std::to_string(c.buffer) +
+                      " of " + std::to_string(source.size()) + " bytes");
     std::vector<unsigned char> decoded = decode(c, source.data() + c.byte_offset, where, label);
     tinygltf::BufferView& view = model.bufferViews[v];
     view.buffer = addBuffer(model, std::move(decoded));

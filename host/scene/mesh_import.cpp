@@ -89,8 +89,7 @@ class MeshImporter {
       stack.pop_back();
       const glm::dmat4 world = parent * toGlm(node->mTransformation);
       for (unsigned i = 0; i < node->mNumMeshes; ++i) addMesh(node->mMeshes[i], world);
-      for (unsigned c = node->mNumChildren; c-- > 0;)
-        stack.push_back({node->mChildren[c], world});
+      for (unsigned c = node->mNumChildren; c-- > 0;) stack.push_back({node->mChildren[c], world});
     }
   }
 
@@ -140,7 +139,8 @@ class MeshImporter {
         }
       }
       if (!keepTriangle(p, scene_)) continue;
-      if (mirrored) std::swap(p[1], p[2]), std::swap(n[1], n[2]), std::swap(vertices[1], vertices[2]);
+      if (mirrored)
+        std::swap(p[1], p[2]), std::swap(n[1], n[2]), std::swap(vertices[1], vertices[2]);
       gltf::appendTriangleAttributes(attributes, vertices, no_tangents, scene_.material_of.size(),
                                      scene_);
       addTriangle(p, n, material, scene_);
@@ -174,8 +174,8 @@ class MeshImporter {
           break;
         }
     if (textured > 0)
-      ignored += (ignored.empty() ? "" : ", ") + std::to_string(textured) +
-                 " material(s)' texture maps";
+      ignored +=
+          (ignored.empty() ? "" : ", ") + std::to_string(textured) + " material(s)' texture maps";
     if (!ignored.empty())
       scene_.warnings.push_back("ignored: " + ignored +
                                 " (only geometry and material colours are imported)");

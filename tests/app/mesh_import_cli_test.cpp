@@ -54,8 +54,8 @@ std::string cubeObj() {
 std::string cubeGltf() {
   test::GltfDocumentBuilder b;
   const int pos = b.floats(kCorners, "VEC3");
-  const int idx = b.addAccessor(test::bytesOf(kFaces), test::kGltfUnsignedShort, kFaces.size(),
-                                "SCALAR");
+  const int idx =
+      b.addAccessor(test::bytesOf(kFaces), test::kGltfUnsignedShort, kFaces.size(), "SCALAR");
   return b.json(
       "\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
       "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.9,0.5,0.1,1],"
@@ -108,7 +108,8 @@ TEST(MeshImportCli, CameraAndAnimationOptionsAreUsageErrorsForAMesh) {
   writeFile(dir, "cube.mtl", "newmtl orange\nKd 0.9 0.5 0.1\n");
   const std::string obj = writeFile(dir, "cube.obj", cubeObj());
   for (const std::vector<std::string>& extra :
-       {std::vector<std::string>{"--camera", "0"}, std::vector<std::string>{"--animation", "0", "--time", "1"}}) {
+       {std::vector<std::string>{"--camera", "0"},
+        std::vector<std::string>{"--animation", "0", "--time", "1"}}) {
     std::vector<std::string> args = {obj, "-o", dir + "/out.png"};
     args.insert(args.end(), extra.begin(), extra.end());
     const test::CommandResult r = runGridrt(args);

@@ -73,8 +73,8 @@ std::string encodeDraco(const TestMesh& m, int method, int position_bits = 0) {
                   draco::PointIndex(m.indices[t + 2])});
   addDracoAttribute(mesh, draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32, false,
                     m.positions, kPositionId);
-  addDracoAttribute(mesh, draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32, false,
-                    m.normals, kNormalId);
+  addDracoAttribute(mesh, draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32, false, m.normals,
+                    kNormalId);
   addDracoAttribute(mesh, draco::GeometryAttribute::COLOR, 4, draco::DT_UINT8, true, m.colors,
                     kColorId);
   draco::Encoder encoder;
@@ -110,32 +110,32 @@ struct DracoDocumentOptions {
 };
 
 // The primitive compressed: accessors without buffer views, the Draco bytes in a view.
-GltfDocumentBuilder dracoBuilder(const TestMesh& m, const std::string& draco,
-                                 std::string& rest, const DracoDocumentOptions& o = {}) {
+GltfDocumentBuilder dracoBuilder(const TestMesh& m, const std::string& draco, std::string& rest,
+                                 const DracoDocumentOptions& o = {}) {
   GltfDocumentBuilder b;
   const int view = b.addView(draco);
   auto accessor = [&](int component, size_t count, const char* type, const char* extra = "") {
     return std::to_string(b.addRawAccessor("{\"componentType\":" + std::to_string(component) +
-                                           ",\"count\":" + std::to_string(count) +
-                                           ",\"type\":\"" + type + "\"" + extra + "}"));
+                                           ",\"count\":" + std::to_string(count) + ",\"type\":\"" +
+                                           type + "\"" + extra + "}"));
   };
   const std::string pos = accessor(kFloat, o.position_count, "VEC3");
   const std::string nrm = accessor(kFloat, 8, "VEC3");
   const std::string col = accessor(kUByte, 8, "VEC4", ",\"normalized\":true");
   const std::string idx = accessor(kUShort, m.indices.size(), "SCALAR");
   const std::string uv =
-      o.with_texcoords
-          ? ",\"TEXCOORD_0\":" +
-                std::to_string(b.addAccessor(bytesOf(m.texcoords), kFloat, 8, "VEC2"))
-          : "";
-  rest = "\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],"
-         "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"]," +
-         kScene + ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":" + pos +
-         ",\"NORMAL\":" + nrm + ",\"COLOR_0\":" + col + uv + "},\"indices\":" + idx +
-         ",\"mode\":4,\"extensions\":{\"KHR_draco_mesh_compression\":{\"bufferView\":" +
-         std::to_string(view) + ",\"attributes\":{\"POSITION\":" + std::to_string(kPositionId) +
-         ",\"NORMAL\":" + std::to_string(o.normal_id) +
-         ",\"COLOR_0\":" + std::to_string(kColorId) + "}}}}]}]";
+      o.with_texcoords ? ",\"TEXCOORD_0\":" +
+                             std::to_string(b.addAccessor(bytesOf(m.texcoords), kFloat, 8, "VEC2"))
+                       : "";
+  rest =
+      "\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],"
+      "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"]," +
+      kScene + ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":" + pos +
+      ",\"NORMAL\":" + nrm + ",\"COLOR_0\":" + col + uv + "},\"indices\":" + idx +
+      ",\"mode\":4,\"extensions\":{\"KHR_draco_mesh_compression\":{\"bufferView\":" +
+      std::to_string(view) + ",\"attributes\":{\"POSITION\":" + std::to_string(kPositionId) +
+      ",\"NORMAL\":" + std::to_string(o.normal_id) + ",\"COLOR_0\":" + std::to_string(kColorId) +
+      "}}}}]}]";
   return b;
 }
 
@@ -147,8 +147,8 @@ std::string dracoDocument(const TestMesh& m, const std::string& draco,
 }
 
 Scene load(const std::string& bytes, const std::string& label = "test.gltf") {
-  return loadGltfFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(),
-                            "", label);
+  return loadGltfFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), "",
+                            label);
 }
 
 std::string errorOf(const std::string& bytes) {
@@ -164,13 +164,11 @@ std::vector<TriangleRow> triangleSet(const Scene& s) {
     std::array<std::array<float, 10>, 3> corners;
     for (size_t k = 0; k < 3; ++k) {
       const size_t v = 3 * t + k;
-      corners[k] = {s.positions[v].x, s.positions[v].y, s.positions[v].z,
-                    s.normals[v].x,   s.normals[v].y,   s.normals[v].z,
-                    s.colors[v].r,    s.colors[v].g,    s.colors[v].b,
-                    s.colors[v].a};
+      corners[k] = {s.positions[v].x, s.positions[v].y, s.positions[v].z, s.normals[v].x,
+                    s.normals[v].y,   s.normals[v].z,   s.colors[v].r,    s.colors[v].g,
+                    s.colors[v].b,    s.colors[v].a};
     }
-    std::rotate(corners.begin(), std::min_element(corners.begin(), corners.end()),
-                corners.end());
+    std::rotate(corners.begin(), std::min_element(corners.begin(), corners.end()), corners.end());
     TriangleRow row;
     for (size_t k = 0; k < 3; ++k) std::copy(corners[k].begin(), corners[k].end(), &row[10 * k]);
     rows.push_back(row);
@@ -194,8 +192,8 @@ TEST(GltfDraco, EdgebreakerMeshEqualsItsUncompressedTwinAsATriangleSet) {
 TEST(GltfDraco, SequentialMeshLoadsAsItsUncompressedTwinInOrder) {
   const TestMesh m;
   const Scene plain = load(plainDocument(m));
-  const Scene draco = load(dracoDocument(m, encodeDraco(m, draco::MESH_SEQUENTIAL_ENCODING),
-                                         {8, kNormalId, true}));
+  const Scene draco =
+      load(dracoDocument(m, encodeDraco(m, draco::MESH_SEQUENTIAL_ENCODING), {8, kNormalId, true}));
   EXPECT_EQ(draco.positions, plain.positions);
   EXPECT_EQ(draco.normals, plain.normals);
   EXPECT_EQ(draco.colors, plain.colors);
@@ -220,8 +218,7 @@ constexpr float kQuantised14BitError = kBoxExtent / float((1 << 14) - 1) * 0.5f 
 TEST(GltfDraco, QuantisedPositionsStayWithinHalfAStep) {
   const TestMesh m;
   const Scene plain = load(plainDocument(m));
-  const Scene draco =
-      load(dracoDocument(m, encodeDraco(m, draco::MESH_SEQUENTIAL_ENCODING, 14)));
+  const Scene draco = load(dracoDocument(m, encodeDraco(m, draco::MESH_SEQUENTIAL_ENCODING, 14)));
   ASSERT_EQ(draco.positions.size(), plain.positions.size());
   float largest = 0.0f;
   for (size_t i = 0; i < plain.positions.size(); ++i)

@@ -34,11 +34,10 @@ constexpr float kQuaternion16BitError = 2.0f / 32767.0f;
 
 // The slanted box of the Draco tests, its coordinates multiples of 1/64 so that the
 // EXPONENTIAL filter (24-bit mantissas sharing the vertex's exponent) keeps them exactly.
-const std::vector<float> kPositions = {0.09375f, -1.703125f, 3.25f,  2.59375f, -1.203125f,
-                                       3.0f,     2.90625f,   1.3125f, 2.5f,    0.34375f,
-                                       0.796875f, 2.75f,     -0.1875f, -1.5f,  5.5f,
-                                       2.296875f, -1.09375f, 5.203125f, 2.640625f, 1.453125f,
-                                       4.796875f, 0.046875f, 1.046875f, 5.0f};
+const std::vector<float> kPositions = {
+    0.09375f,  -1.703125f, 3.25f,     2.59375f,  -1.203125f, 3.0f,      2.90625f,  1.3125f,
+    2.5f,      0.34375f,   0.796875f, 2.75f,     -0.1875f,   -1.5f,     5.5f,      2.296875f,
+    -1.09375f, 5.203125f,  2.640625f, 1.453125f, 4.796875f,  0.046875f, 1.046875f, 5.0f};
 const std::vector<uint32_t> kIndices = {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
                                         1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7};
 constexpr size_t kVertices = 8;
@@ -81,10 +80,9 @@ class MeshoptDocument {
   }
   int accessor(int view, int component, size_t count, const std::string& type,
                const std::string& extra = "") {
-    return b_.addRawAccessor("{\"bufferView\":" + std::to_string(view) +
-                             ",\"componentType\":" + std::to_string(component) +
-                             ",\"count\":" + std::to_string(count) + ",\"type\":\"" + type +
-                             "\"" + extra + "}");
+    return b_.addRawAccessor("{\"bufferView\":" + std::to_string(view) + ",\"componentType\":" +
+                             std::to_string(component) + ",\"count\":" + std::to_string(count) +
+                             ",\"type\":\"" + type + "\"" + extra + "}");
   }
   GltfDocumentBuilder& builder() { return b_; }
   // `rest` after the extension declarations and the placeholder buffer.
@@ -113,9 +111,9 @@ std::string primitive(int position, int indices, int normal = -1) {
 // the box again with EXPONENTIAL-filtered positions and INDICES-coded 32-bit indices.
 MeshoptDocument compressedBoxes(std::string& rest) {
   MeshoptDocument d;
-  const int pos = d.accessor(d.view(encodedVertices(kPositions.data(), kVertices, 12), kVertices,
-                                    12, "ATTRIBUTES"),
-                             kFloat, kVertices, "VEC3");
+  const int pos = d.accessor(
+      d.view(encodedVertices(kPositions.data(), kVertices, 12), kVertices, 12, "ATTRIBUTES"),
+      kFloat, kVertices, "VEC3");
   const std::vector<float> normals = unitNormals();
   std::vector<float> normals4;
   for (size_t v = 0; v < kVertices; ++v)
@@ -139,8 +137,8 @@ MeshoptDocument compressedBoxes(std::string& rest) {
   std::string sequence(meshopt_encodeIndexSequenceBound(kIndices.size(), kVertices), '\0');
   sequence.resize(meshopt_encodeIndexSequence(reinterpret_cast<unsigned char*>(sequence.data()),
                                               sequence.size(), kIndices.data(), kIndices.size()));
-  const int idx2 = d.accessor(d.view(sequence, kIndices.size(), 4, "INDICES", "NONE", false),
-                              kUInt, kIndices.size(), "SCALAR");
+  const int idx2 = d.accessor(d.view(sequence, kIndices.size(), 4, "INDICES", "NONE", false), kUInt,
+                              kIndices.size(), "SCALAR");
   rest = d.rest(kScene + ",\"meshes\":[{\"primitives\":[" + primitive(pos, idx, nrm) + "," +
                 primitive(pos2, idx2) + "]}]");
   return d;
@@ -157,8 +155,8 @@ std::string plainBoxes() {
 }
 
 Scene load(const std::string& bytes, const std::string& label = "test.gltf") {
-  return loadGltfFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(),
-                            "", label);
+  return loadGltfFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), "",
+                            label);
 }
 
 // Per triangle its vertices (position and normal), turned to start at the smallest

@@ -62,10 +62,9 @@ TEST(MeshImport, ObjWithMtlGivesItsTrianglesNormalsAndColours) {
   const Scene s = importMeshFile(writeFile(dir, "shape.obj", kObj));
   ASSERT_EQ(s.triangleCount(), 3u);
   // The quad split along its diagonal from the first corner, counter-clockwise as written.
-  const std::vector<Triangle> want = {
-      {glm::vec3(0, 0, 0), glm::vec3(2, 0, 0), glm::vec3(2, 1, 0)},
-      {glm::vec3(0, 0, 0), glm::vec3(2, 1, 0), glm::vec3(0, 1, 0)},
-      {glm::vec3(0, 0, 0), glm::vec3(0, 0, 3), glm::vec3(2, 0, 0)}};
+  const std::vector<Triangle> want = {{glm::vec3(0, 0, 0), glm::vec3(2, 0, 0), glm::vec3(2, 1, 0)},
+                                      {glm::vec3(0, 0, 0), glm::vec3(2, 1, 0), glm::vec3(0, 1, 0)},
+                                      {glm::vec3(0, 0, 0), glm::vec3(0, 0, 3), glm::vec3(2, 0, 0)}};
   EXPECT_EQ(trianglesOf(s), want);
   ASSERT_EQ(s.normals.size(), 9u);
   for (size_t v = 0; v < 6; ++v) EXPECT_EQ(s.normals[v], glm::vec3(0, 0, 1)) << v;
@@ -88,8 +87,8 @@ TEST(MeshImport, ObjWithMtlGivesItsTrianglesNormalsAndColours) {
 
 TEST(MeshImport, ObjWithoutMaterialsTakesTheDefaultMaterial) {
   const std::string dir = test::freshDir("bare_obj");
-  const Scene s = importMeshFile(
-      writeFile(dir, "bare.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2\n"));
+  const Scene s =
+      importMeshFile(writeFile(dir, "bare.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2\n"));
   ASSERT_EQ(s.triangleCount(), 1u);
   EXPECT_EQ(s.skipped_primitives, 1u);  // the line
   const Material& m = s.materials[size_t(s.material_of[0])];
@@ -104,16 +103,16 @@ const std::string kPlyHeader =
 
 TEST(MeshImport, PlyGivesItsTrianglesAndVertexColours) {
   const std::string dir = test::freshDir("ply");
-  const std::string path = writeFile(
-      dir, "square.ply",
-      kPlyHeader +
-          "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
-          "0 0 0 255 0 0\n1 0 0 0 255 0\n1 1 0 0 0 255\n0 1 0 51 102 153\n5 5 5 0 0 0\n"
-          "3 0 1 2\n3 0 2 3\n");
+  const std::string path =
+      writeFile(dir, "square.ply",
+                kPlyHeader +
+                    "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                    "0 0 0 255 0 0\n1 0 0 0 255 0\n1 1 0 0 0 255\n0 1 0 51 102 153\n5 5 5 0 0 0\n"
+                    "3 0 1 2\n3 0 2 3\n");
   const Scene s = importMeshFile(path);
   ASSERT_EQ(s.triangleCount(), 2u);
-  EXPECT_EQ(s.positions, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0},
-                                                  {0, 0, 0}, {1, 1, 0}, {0, 1, 0}}));
+  EXPECT_EQ(s.positions, (std::vector<glm::vec3>{
+                             {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 0}, {1, 1, 0}, {0, 1, 0}}));
   ASSERT_EQ(s.colors.size(), 6u);
   const glm::vec4 red(1, 0, 0, 1), green(0, 1, 0, 1), blue(0, 0, 1, 1);
   const glm::vec4 slate(51 / 255.0f, 102 / 255.0f, 153 / 255.0f, 1);
@@ -133,8 +132,8 @@ TEST(MeshImport, StlGivesItsFacetsWithTheirNormals) {
                                      "endsolid two\n");
   const Scene s = importMeshFile(path);
   ASSERT_EQ(s.triangleCount(), 2u);
-  EXPECT_EQ(s.positions, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0},
-                                                  {0, 0, 0}, {0, 2, 0}, {0, 0, 2}}));
+  EXPECT_EQ(s.positions, (std::vector<glm::vec3>{
+                             {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 0}, {0, 2, 0}, {0, 0, 2}}));
   ASSERT_EQ(s.normals.size(), 6u);
   for (size_t v = 0; v < 3; ++v) EXPECT_EQ(s.normals[v], glm::vec3(0, 0, 1));
   // A zero facet normal is no normal: the face's, cross((0,2,0), (0,0,2)) = +x.
@@ -143,12 +142,12 @@ TEST(MeshImport, StlGivesItsFacetsWithTheirNormals) {
 
 TEST(MeshImport, TrianglesNoRayCanHitAreDroppedAndCounted) {
   const std::string dir = test::freshDir("degenerate");
-  const std::string path = writeFile(
-      dir, "degenerate.ply",
-      kPlyHeader +
-          "element face 3\nproperty list uchar int vertex_indices\nend_header\n"
-          "0 0 0 0 0 0\n1 0 0 0 0 0\n0 1 0 0 0 0\n2 0 0 0 0 0\nnan 0 0 0 0 0\n"
-          "3 0 1 2\n3 0 1 3\n3 0 1 4\n");  // fine; collinear; a NaN vertex
+  const std::string path =
+      writeFile(dir, "degenerate.ply",
+                kPlyHeader +
+                    "element face 3\nproperty list uchar int vertex_indices\nend_header\n"
+                    "0 0 0 0 0 0\n1 0 0 0 0 0\n0 1 0 0 0 0\n2 0 0 0 0 0\nnan 0 0 0 0 0\n"
+                    "3 0 1 2\n3 0 1 3\n3 0 1 4\n");  // fine; collinear; a NaN vertex
   const Scene s = importMeshFile(path);
   EXPECT_EQ(s.triangleCount(), 1u);
   EXPECT_EQ(s.dropped_zero_area, 1u);

@@ -63,7 +63,8 @@ inline std::string makeGlb(std::string json, std::string bin) {
   json.resize((json.size() + 3) / 4 * 4, ' ');
   bin.resize((bin.size() + 3) / 4 * 4, '\0');
   const size_t total = 12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size());
-  std::string glb = "glTF" + u32(2) + u32(uint32_t(total)) + u32(uint32_t(json.size())) + "JSON" + json;
+  std::string glb =
+      "glTF" + u32(2) + u32(uint32_t(total)) + u32(uint32_t(json.size())) + "JSON" + json;
   if (!bin.empty()) glb += u32(uint32_t(bin.size())) + std::string("BIN\0", 4) + bin;
   return glb;
 }
@@ -74,9 +75,8 @@ class GltfDocumentBuilder {
   int addAccessor(const std::string& bytes, int component_type, size_t count,
                   const std::string& type, const std::string& extra = "") {
     return addRawAccessor("{\"bufferView\":" + std::to_string(addView(bytes)) +
-                          ",\"componentType\":" + std::to_string(component_type) +
-                          ",\"count\":" + std::to_string(count) + ",\"type\":\"" + type + "\"" +
-                          extra + "}");
+                          ",\"componentType\":" + std::to_string(component_type) + ",\"count\":" +
+                          std::to_string(count) + ",\"type\":\"" + type + "\"" + extra + "}");
   }
   // A buffer view over `bytes`, 4-byte aligned in buffer 0; returns its index.
   int addView(const std::string& bytes) {
@@ -126,8 +126,7 @@ class GltfDocumentBuilder {
 
   // The document: `rest` holds the other top-level members without braces.
   std::string json(const std::string& rest) const {
-    return document(",\"uri\":\"data:application/octet-stream;base64," + base64(bin_) + "\"",
-                    rest);
+    return document(",\"uri\":\"data:application/octet-stream;base64," + base64(bin_) + "\"", rest);
   }
   // The document as a .glb, buffer 0 its BIN chunk.
   std::string glb(const std::string& rest) const { return makeGlb(document("", rest), bin_); }
