@@ -33,8 +33,8 @@ struct Subtree {
 
 // Appends the grid nodes, cells and planes of `part` to the arrays `nodes`, `cells`,
 // `planes`, renumbering what refers into them; its leaves are numbered from `leaf_base`.
-void appendGrids(std::vector<GridNode>& nodes, std::vector<int>& cells,
-                 std::vector<float>& planes, const Subtree& part, int leaf_base) {
+void appendGrids(std::vector<GridNode>& nodes, std::vector<int>& cells, std::vector<float>& planes,
+                 const Subtree& part, int leaf_base) {
   const int node_base = int(nodes.size()), cell_base = int(cells.size());
   const int plane_base = int(planes.size());
   for (GridNode n : part.nodes) {
@@ -83,7 +83,8 @@ void cellRange(const std::vector<float>& p, double lo, double hi, double m, int&
               (p.begin() + 1));
   last = int(std::upper_bound(p.begin(), p.end() - 1, reach_hi,
                               [](double b, float a) { return b < double(a); }) -
-             p.begin()) - 1;
+             p.begin()) -
+         1;
   first = std::clamp(first, 0, r - 1);
   last = std::clamp(last, 0, r - 1);
 }
@@ -179,8 +180,8 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base,
   parallelForDynamic(size_t(0), full.size(), size_t(1), [&](size_t k) {
     float clo[3], chi[3];
     cellBox(full[k], clo, chi);
-    split[k] = buildNode(clo, chi, base, in[full[k]], depth + 1, m, density, max_leaf,
-                         below[k]) >= 0;
+    split[k] =
+        buildNode(clo, chi, base, in[full[k]], depth + 1, m, density, max_leaf, below[k]) >= 0;
   });
   for (int c = 0, k = 0; c < cells; ++c) {
     if (in[c].empty()) continue;
@@ -257,9 +258,9 @@ UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& setting
     const float hi[3] = {plane(0, v.x + 1), plane(1, v.y + 1), plane(2, v.z + 1)};
     std::vector<int> ids(top.triangleCountOfPe(pe));
     for (size_t k = 0; k < ids.size(); ++k) ids[k] = int(k);
-    split[pe] = buildNode(lo, hi, top.pe_triangles.data() + top.pe_tri_begin[pe], ids, 1,
-                          top.margin, settings.density, settings.max_leaf_triangles,
-                          trees[pe]) >= 0;
+    split[pe] =
+        buildNode(lo, hi, top.pe_triangles.data() + top.pe_tri_begin[pe], ids, 1, top.margin,
+                  settings.density, settings.max_leaf_triangles, trees[pe]) >= 0;
   });
 
   UniformGrid grid;
