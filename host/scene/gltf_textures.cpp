@@ -99,7 +99,11 @@ TextureSlot textureSlot(const tinygltf::Model& model, int index, int texcoord,
                            "source?); ignored");
     return slot;
   }
-  // KHR_texture_transform: uv' = T * R * S * (u, v, 1), as its specification's GLSL.
+  // KHR_texture_transform: uv' = T * R * S * (u, v, 1), R turning the UVs counter-clockwise
+  // in glTF's UV space, whose v axis points down: u' = cos u + sin v, v' = -sin u + cos v.
+  // That is what the Khronos sample TextureTransformTest (its arrow on the green marker),
+  // Babylon.js, three.js and Blender's importer do; the GLSL listing in the extension's text
+  // has the opposite sign (its matrix is counter-clockwise with v up), a known erratum.
   auto it = extensions.find("KHR_texture_transform");
   glm::dvec2 offset(0.0), scale(1.0);
   double rotation = 0.0;
@@ -119,8 +123,8 @@ TextureSlot textureSlot(const tinygltf::Model& model, int index, int texcoord,
   const double c = std::cos(rotation), s = std::sin(rotation);
   slot.texture = index;
   slot.texcoord = texcoord;
-  slot.map_u = glm::vec3(glm::dvec3(c * scale.x, -s * scale.y, offset.x));
-  slot.map_v = glm::vec3(glm::dvec3(s * scale.x, c * scale.y, offset.y));
+  slot.map_u = glm::vec3(glm::dvec3(c * scale.x, s * scale.y, offset.x));
+  slot.map_v = glm::vec3(glm::dvec3(-s * scale.x, c * scale.y, offset.y));
   if (!std::isfinite(slot.map_u.x + slot.map_u.y + slot.map_u.z + slot.map_v.x + slot.map_v.y +
                      slot.map_v.z))
     fail(label, where + ": KHR_texture_transform is not finite");

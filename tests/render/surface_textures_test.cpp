@@ -159,7 +159,7 @@ TEST(SurfaceTextures, LinearFilteringBlendsTheFourNearestTexels) {
 
 TEST(SurfaceTextures, TheTextureTransformMapsTheCoordinatesFirst) {
   TextureSlot slot = slot0();
-  // KHR_texture_transform's rotation by a quarter turn: (u, v) -> (-v, u).
+  // A quarter turn of the coordinates, (u, v) -> (-v, u), applied before the lookup.
   slot.map_u = {0.0f, -1.0f, 0.0f};
   slot.map_v = {1.0f, 0.0f, 0.0f};
   expectAlbedo(albedoOf(texturedQuad(slot), kTexels), kTexels,

@@ -168,11 +168,12 @@ TEST(GltfTextures, SamplersSlotsAndTextureTransforms) {
   EXPECT_EQ(m.metallic_roughness_texture.texture, 0);
   EXPECT_EQ(m.occlusion_texture.texture, 0);
   EXPECT_FLOAT_EQ(m.occlusion_strength, 0.25f);
-  // uv' = T R S uv (the extension's GLSL): rotated a quarter turn, u' = 0.5 - 3 v and
-  // v' = 0.25 + 2 u.
+  // uv' = T R S uv with R counter-clockwise in UV space (v down), as the Khronos sample
+  // TextureTransformTest and the viewers draw it: a quarter turn gives u' = 0.5 + 3 v and
+  // v' = 0.25 - 2 u (the extension's GLSL listing, with the opposite sign, gave 0.5 - 3 v).
   const TextureSlot& e = m.emissive_texture;
   EXPECT_EQ(e.texcoord, 1);
-  const glm::vec3 want_u(0.0f, -3.0f, 0.5f), want_v(2.0f, 0.0f, 0.25f);
+  const glm::vec3 want_u(0.0f, 3.0f, 0.5f), want_v(-2.0f, 0.0f, 0.25f);
   for (int c = 0; c < 3; ++c) {
     EXPECT_NEAR(e.map_u[c], want_u[c], kTransformTolerance);
     EXPECT_NEAR(e.map_v[c], want_v[c], kTransformTolerance);
