@@ -409,11 +409,9 @@ FrameResult renderScene(const Options& o, ClRuntime& runtime, const Scene& scene
   stats["refined_pixels"] = frame.refined_pixels;
   stats["passes"] = frame.passes;
   stats["frames_timed"] = t.phases.frame_ms.size();
-  stats["rays"] = {{"primary", frame.rays.primary},
-                   {"shadow", frame.rays.shadow},
-                   {"reflection", frame.rays.reflection},
-                   {"refraction", frame.rays.refraction},
-                   {"total", total_rays}};
+  stats["rays"] = {{"primary", frame.rays.primary},         {"shadow", frame.rays.shadow},
+                   {"reflection", frame.rays.reflection},   {"refraction", frame.rays.refraction},
+                   {"see_through", frame.rays.see_through}, {"total", total_rays}};
   stats["build_ms"] = build_ms;
   stats["lists_ms"] = median(t.lists_ms);
   stats["kernel_ms"] = median(t.kernel_ms);

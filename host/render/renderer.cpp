@@ -95,6 +95,7 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, Intersector& inters
       intersector_(intersector),
       settings_(settings),
       surface_textures_(scene),
+      see_through_(scene, surface_textures_),
       output_window_(settings.crop.orWholeImage(settings.width, settings.height)),
       film_window_(settings.adaptive_aa
                        ? grownInside(output_window_, settings.width, settings.height)
@@ -145,7 +146,7 @@ void Renderer::traceBatched(const std::vector<GrRay>& rays, HitMode mode, std::v
                  });
 }
 
-void Renderer::traceShadows(double& ms) {
+void Renderer::traceShadows(double& ms, uint64_t& see_through_rays) {
   shadow_hits_.resize(shadow_rays_.size());
   for (size_t l = 0; l < lights_.size(); ++l) {
     const Light& light = lights_[l];
@@ -175,6 +176,20 @@ void Renderer::traceShadows(double& ms) {
       for (size_t i = 0; i < light_ray_index_.size(); ++i)
         shadow_hits_[light_ray_index_[i]] = hits[i];
   }
+  if (!see_through_.active()) return;
+  // Past MASK holes and through BLEND surfaces: the light that gets through reaches the
+  // pixel (as if unoccluded), scaled by its share.
+  see_through_rays += see_through_.transmittance(
+      shadow_rays_, shadow_hits_,
+      [&](const std::vector<GrRay>& rays, std::vector<GrHit>& hits) {
+        traceBatched(rays, HitMode::Closest, hits, nullptr, ms);
+      },
+      shadow_light_share_);
+  for (size_t k = 0; k < shadow_rays_.size(); ++k)
+    if (shadow_light_share_[k] > 0.0f && shadow_hits_[k].prim >= 0) {
+      shadow_hits_[k].prim = -1;
+      shadows_[k].radiance *= shadow_light_share_[k];
+    }
 }
 
 void Renderer::tracePrimary(const PixelWindow& window, std::vector<GrHit>& hits,
@@ -384,6 +399,10 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
       tracePrimary(*window, hits, diag, trace_ms);
     else
       traceBatched(*rays, HitMode::Closest, hits, diag, trace_ms);
+    frame.rays.see_through += see_through_.passHoles(
+        *rays, hits, [&](const std::vector<GrRay>& onward, std::vector<GrHit>& onward_hits) {
+          traceBatched(onward, HitMode::Closest, onward_hits, nullptr, trace_ms);
+        });
     if (first && aov_pass && (settings_.want_aovs || settings_.want_diagnostics))
       fillPrimaryAovs(frame.aovs, *rays, hits, diagnostics, spp);
     shadow_total += shadeGeneration(depth, *rays, paths, primary, shadow_total, frame);
@@ -399,7 +418,7 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   shadow_rays_.resize(shadow_total);
   shadows_.resize(shadow_total);
   frame.rays.shadow += shadow_total;
-  if (shadow_total) traceShadows(frame.times.shadow_ms);
+  if (shadow_total) traceShadows(frame.times.shadow_ms, frame.rays.see_through);
   clock.restart();
   addPassRadiance(depths, primary);
   frame.times.shade_ms += clock.ms();
@@ -650,6 +669,19 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
         if (backface && mat.transmission > 0.0f && mat.attenuation_distance > 0.0f)
           weight *= glm::pow(glm::max(mat.attenuation_color, glm::vec3(1e-6f)),
                              glm::vec3(hit.t / mat.attenuation_distance));
+        // BLEND: the alpha's share of the light is the surface's, the rest goes on along
+        // the ray (from the same origin past this hit) as a straight transmission.
+        if (mat.alpha_mode == AlphaMode::Blend) {
+          const float coverage = see_through_.coverage(rays[i], hit);
+          const glm::vec3 through = weight * (1.0f - coverage);
+          if (spawn && coverage < 1.0f && worthTracing(through)) {
+            const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
+            out.rays[s] = rays[i];
+            out.rays[s].tmin = hit.t;
+            out.paths[s] = PathRay{path.pixel, through, RayKind::Refraction, path.cone};
+          }
+          weight *= coverage;
+        }
         local[i] = weight * (emissive + ambient * terms.diffuse);
         const glm::vec3 origin(lanes.ox[k], lanes.oy[k], lanes.oz[k]);
         // How far secondary origins leave the surface, and where shadow rays start.

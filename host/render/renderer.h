@@ -16,6 +16,7 @@
 #include "intersector.h"
 #include "pixel_window.h"
 #include "scene.h"
+#include "see_through_hits.h"
 #include "surface_textures.h"
 #include "whitted_shading.h"
 
@@ -55,7 +56,9 @@ struct RenderSettings {
 // Rays traced per kind in one frame.
 struct RayCounts {
   uint64_t primary = 0, shadow = 0, reflection = 0, refraction = 0;
-  uint64_t total() const { return primary + shadow + reflection + refraction; }
+  // Rays traced again past alphaMode MASK holes and BLEND surfaces (see_through_hits.h).
+  uint64_t see_through = 0;
+  uint64_t total() const { return primary + shadow + reflection + refraction + see_through; }
 };
 
 // Primary-ray AOVs (sample 0 of each pixel).
@@ -157,8 +160,9 @@ class Renderer {
   // paths is null for the primary generation.
   struct Generation;
   // Traces shadow_rays_ into shadow_hits_ (any hit), light by light: rays towards a
-  // point or spot light through Intersector::intersectTowardsPoint.
-  void traceShadows(double& ms);
+  // point or spot light through Intersector::intersectTowardsPoint; then past see-through
+  // surfaces (their rays traced again counted into see_through_rays).
+  void traceShadows(double& ms, uint64_t& see_through_rays);
   // Shades generation `depth` (its hits in generations_[depth]): headlight shading with
   // primary_only, Whitted shading otherwise. Returns the shadow rays it spawned.
   size_t shadeGeneration(int depth, const std::vector<GrRay>& rays,
@@ -213,6 +217,7 @@ class Renderer {
   std::vector<Light> lights_;                       // the scene's, or the default light
   std::vector<SurfaceTerms> material_terms_;        // per material
   SurfaceTextures surface_textures_;                // textures and vertex colours at hits
+  SeeThroughHits see_through_;                      // rays past alphaMode MASK holes and BLEND
   // Ray cones (surface_textures.h): a camera ray's width at the camera, and the angle a
   // cone widens by per unit of distance (a pixel's; curvature ignored at bounces).
   float cone_origin_ = 0.0f, cone_spread_ = 0.0f;
@@ -250,8 +255,9 @@ class Renderer {
   std::vector<GrRay> shadow_rays_;
   std::vector<ShadowRay> shadows_;
   std::vector<GrHit> shadow_hits_;
-  std::vector<GrRay> light_rays_;        // one light's shadow rays (several lights)
-  std::vector<size_t> light_ray_index_;  // ... and their indices in the shadow rays
+  std::vector<float> shadow_light_share_;  // per shadow ray: the light past see-through surfaces
+  std::vector<GrRay> light_rays_;          // one light's shadow rays (several lights)
+  std::vector<size_t> light_ray_index_;    // ... and their indices in the shadow rays
   std::vector<Spawned> spawned_;
   std::vector<size_t> chunk_offsets_;  // where each chunk's output starts (concatenateChunks)
   // The pixels the film holds (the crop window, or the whole image); the pixels traced,

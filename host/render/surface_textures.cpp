@@ -149,4 +149,17 @@ MaterialSample SurfaceTextures::at(int tri, const glm::vec3& p, float footprint,
   return s;
 }
 
+float SurfaceTextures::alphaAt(int tri, const glm::vec3& p) const {
+  const Material& m = scene_.materials[size_t(scene_.material_of[size_t(tri)])];
+  float alpha = m.base_alpha;
+  if (!varies(scene_.material_of[size_t(tri)])) return alpha;
+  const glm::vec3 b = barycentrics(tri, p);
+  if (!scene_.colors.empty()) {
+    const size_t v = 3 * size_t(tri);
+    alpha *= b.x * scene_.colors[v].a + b.y * scene_.colors[v + 1].a + b.z * scene_.colors[v + 2].a;
+  }
+  if (m.base_color_texture.used()) alpha *= lookup(m.base_color_texture, true, tri, b, -INFINITY).a;
+  return alpha;
+}
+
 }  // namespace gridrt

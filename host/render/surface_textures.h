@@ -39,6 +39,11 @@ class SurfaceTextures {
   // the finest level); cos_theta: the cosine between the ray and the surface normal.
   MaterialSample at(int tri, const glm::vec3& p, float footprint, float cos_theta) const;
 
+  // The alpha of triangle `tri` at its point p: baseColorFactor's alpha x the base colour
+  // texture's alpha (its finest level: a cut-out's edge does not move with distance) x the
+  // interpolated COLOR_0 alpha; what alphaMode MASK and BLEND read (docs/gltf.md, "Alpha").
+  float alphaAt(int tri, const glm::vec3& p) const;
+
   // Whether hits on `material` have their shading normal from a normal map.
   bool hasNormalMap(int material) const {
     return scene_.materials[size_t(material)].normal_texture.used();

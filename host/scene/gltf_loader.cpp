@@ -426,6 +426,11 @@ Material convertMaterial(const tinygltf::Material& m, size_t index) {
   const auto& pbr = m.pbrMetallicRoughness;
   if (pbr.baseColorFactor.size() >= 3)
     out.base_color = {pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]};
+  if (pbr.baseColorFactor.size() >= 4) out.base_alpha = float(pbr.baseColorFactor[3]);
+  out.alpha_mode = m.alphaMode == "MASK"    ? AlphaMode::Mask
+                   : m.alphaMode == "BLEND" ? AlphaMode::Blend
+                                            : AlphaMode::Opaque;
+  out.alpha_cutoff = float(m.alphaCutoff);
   out.metallic = float(pbr.metallicFactor);
   out.roughness = float(pbr.roughnessFactor);
   out.double_sided = m.doubleSided;

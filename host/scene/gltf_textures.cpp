@@ -176,8 +176,6 @@ void convertMaterialTextures(const tinygltf::Model& model, const tinygltf::Mater
   out.occlusion_strength = float(std::clamp(m.occlusionTexture.strength, 0.0, 1.0));
   out.normal_texture = slot(m.normalTexture, "normalTexture");
   out.normal_scale = float(m.normalTexture.scale);
-  if (m.alphaMode == "MASK" || m.alphaMode == "BLEND")
-    warnOnce(warnings, "alphaMode " + m.alphaMode + " is not supported: drawn opaque");
   // Material extensions name their textures "...Texture" (transmissionTexture, ...).
   for (const auto& [name, value] : m.extensions)
     for (const std::string& key : value.Keys())

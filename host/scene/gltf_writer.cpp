@@ -100,7 +100,11 @@ tinygltf::Material toGltf(const Scene& scene, int index, tinygltf::Model& model)
   out.doubleSided = m.double_sided;
   auto& pbr = out.pbrMetallicRoughness;
   pbr.baseColorFactor = tidy(m.base_color);
-  pbr.baseColorFactor.push_back(1.0);
+  pbr.baseColorFactor.push_back(tidy(m.base_alpha));
+  if (m.alpha_mode != AlphaMode::Opaque) {
+    out.alphaMode = m.alpha_mode == AlphaMode::Mask ? "MASK" : "BLEND";
+    out.alphaCutoff = tidy(m.alpha_cutoff);
+  }
   pbr.metallicFactor = tidy(m.metallic);
   pbr.roughnessFactor = tidy(m.roughness);
 

@@ -55,6 +55,11 @@ struct SceneImage {
   TexelImage data;    // metallic-roughness and occlusion lookups: the values as stored
 };
 
+// How a material's alpha (base colour alpha x texture alpha x COLOR_0 alpha) is used
+// (glTF alphaMode; docs/gltf.md, "Alpha"): ignored; a cut-out (below the cutoff the
+// surface is a hole every ray passes); a partial transmission (alpha of the light stays).
+enum class AlphaMode { Opaque, Mask, Blend };
+
 // A glTF material mapped onto Whitted/Phong terms (docs/gltf.md, "Material mapping").
 struct Material {
   std::string name = "default";
@@ -67,6 +72,11 @@ struct Material {
   float attenuation_distance = 0.0f;  // 0 = no absorption inside
   glm::vec3 emissive{0.0f};           // emissiveFactor * emissive_strength
   bool double_sided = true;
+  float base_alpha = 1.0f;  // baseColorFactor's alpha
+  AlphaMode alpha_mode = AlphaMode::Opaque;
+  float alpha_cutoff = 0.5f;  // Mask: alpha below it is a hole
+  // Whether rays may pass this material's surfaces (Mask holes, Blend's partial alpha).
+  bool seeThrough() const { return alpha_mode != AlphaMode::Opaque; }
   // Textures: base colour (times base_color, sRGB), metallic (B) and roughness (G) times
   // their factors, emissive (times emissive, sRGB), occlusion (R, scales the ambient term).
   // Normal map: tangent-space normals (RGB as stored) scaled in x and y by normal_scale.

@@ -478,8 +478,9 @@ TEST(GltfLoader, MapsMaterialFactorsAndExtensions) {
   GltfBuilder b;
   int tri = b.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
   const std::string materials =
-      "\"materials\":[{\"name\":\"glass\",\"doubleSided\":true,"
-      "\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.1,0.2,0.3,1],\"metallicFactor\":0.25,"
+      "\"materials\":[{\"name\":\"glass\",\"doubleSided\":true,\"alphaMode\":\"MASK\","
+      "\"alphaCutoff\":0.3,\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.1,0.2,0.3,0.6],"
+      "\"metallicFactor\":0.25,"
       "\"roughnessFactor\":0.75},\"emissiveFactor\":[1,0.5,0],"
       "\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":0.9},"
       "\"KHR_materials_ior\":{\"ior\":1.33},"
@@ -503,6 +504,9 @@ TEST(GltfLoader, MapsMaterialFactorsAndExtensions) {
   EXPECT_FLOAT_EQ(glass.attenuation_distance, 2.0f);
   expectNear(glass.emissive, {4, 2, 0});
   EXPECT_TRUE(glass.double_sided);
+  EXPECT_FLOAT_EQ(glass.base_alpha, 0.6f);
+  EXPECT_EQ(glass.alpha_mode, AlphaMode::Mask);
+  EXPECT_FLOAT_EQ(glass.alpha_cutoff, 0.3f);
 
   const Material& plain = s.materials[1];  // glTF defaults
   expectNear(plain.base_color, {1, 1, 1});
@@ -513,6 +517,9 @@ TEST(GltfLoader, MapsMaterialFactorsAndExtensions) {
   EXPECT_FLOAT_EQ(plain.attenuation_distance, 0.0f);  // glTF +infinity: no absorption
   expectNear(plain.emissive, {0, 0, 0});
   EXPECT_FALSE(plain.double_sided);
+  EXPECT_FLOAT_EQ(plain.base_alpha, 1.0f);
+  EXPECT_EQ(plain.alpha_mode, AlphaMode::Opaque);
+  EXPECT_FLOAT_EQ(plain.alpha_cutoff, 0.5f);
 
   EXPECT_EQ(s.materials[2].name, "default");
 }
