@@ -275,6 +275,7 @@ RenderSettings renderSettings(const Options& o) {
   settings.min_path_weight = o.min_path_weight;
   if (o.crop) settings.crop = *o.crop;   // only the window's rays are traced
   settings.want_aovs = !o.aovs.empty();  // filling them costs time per frame
+  settings.want_alpha = o.alpha;
   for (const auto& aov : o.aovs) settings.want_diagnostics |= isDiagnosticAov(aov.first);
   return settings;
 }

@@ -212,6 +212,18 @@ void finishOutputFormat(Options& o, const RawOptions& raw) {
                      " file)");
 }
 
+// --alpha needs an image format with an alpha channel; an unknown format is refused on
+// its own when the output is checked.
+void checkAlphaFormat(const Options& o) {
+  if (!o.alpha) return;
+  const std::optional<ImageFormat> format = o.format ? o.format : formatOfPath(o.output);
+  if (!format || hasAlpha(*format)) return;
+  const std::string shown =
+      o.output == kStandardOutput ? "standard output" : "-o '" + o.output + "'";
+  throw UsageError("--alpha: " + shown + " is " + formatName(*format) +
+                   ", which has no alpha channel (write .png, .exr or .tif)");
+}
+
 // Two outputs on one path would leave only the last: refused.
 void checkDistinctOutputs(const Options& o) {
   namespace fs = std::filesystem;
@@ -245,6 +257,9 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
                  "match it")
       ->check(CLI::IsMember({"png", "jpg", "jpeg", "exr"}));
   app.add_flag("--force", o.force, "without -o, replace an existing SCENE.png");
+  app.add_flag("--alpha", o.alpha,
+               "add alpha: each pixel's share of camera samples that hit (.png, .exr, .tif; "
+               ".exr/.tif colour premultiplied)");
   app.add_option("--width", o.width, "image width in pixels")
       ->capture_default_str()
       ->check(integerIn(1, 65536));
@@ -396,6 +411,7 @@ void finish(Options& o, const RawOptions& raw) {
   }
   finishOutputFormat(o, raw);
   finishCrop(o, raw);
+  checkAlphaFormat(o);
   checkCombinations(o, raw);
   checkFramePatterns(o);
   checkDistinctOutputs(o);

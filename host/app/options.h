@@ -28,6 +28,9 @@ struct Options {
   std::optional<ImageFormat> format;  // --format; always set for -o - (default png)
   bool output_named = false;          // -o given: the user asked for that file, existing or not
   bool force = false;                 // --force: a derived output may replace an existing file
+  // --alpha: the image gets an alpha channel, each pixel's share of camera samples that hit
+  // the scene (png, exr, tif only); the colour is associated with it (docs/output.md).
+  bool alpha = false;
   int width = 640;
   int height = 480;
   // --width or --height given: the image keeps that size. Otherwise a scene camera's

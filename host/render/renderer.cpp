@@ -203,6 +203,7 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     std::fill(radiance_.begin() + size_t(y) * fw, radiance_.begin() + size_t(y + 1) * fw,
               glm::vec3(0.0f));
   });
+  if (settings_.want_alpha) coverage_.reset(pixels);
   if (settings_.want_aovs || settings_.want_diagnostics) {
     const bool diag = settings_.want_diagnostics;
     PrimaryAovs& a = frame.aovs;
@@ -253,13 +254,19 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
 
   frame.film.width = fw;
   frame.film.height = fh;
+  frame.film.background = settings_.background;
   frame.film.rgb.resize(pixels * 3);
   parallelFor(0LL, (long long)(pixels), [&](long long p) {
     for (int c = 0; c < 3; ++c) frame.film.rgb[3 * p + c] = radiance_[p][c];
   });
+  if (settings_.want_alpha)
+    frame.film.alpha = coverage_.alpha();
+  else
+    frame.film.alpha.clear();
   if (output_window_ != win) {  // the ring of adaptive AA's neighbours is not output
     const PixelWindow& out = output_window_;
     keepWindow(frame.film.rgb, win, out, 3);
+    keepWindow(frame.film.alpha, win, out, 1);
     frame.film.width = out.width();
     frame.film.height = out.height();
     PrimaryAovs& a = frame.aovs;
@@ -386,6 +393,7 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
       traceBatched(*rays, HitMode::Closest, hits, diag, trace_ms);
     if (first && aov_pass && (settings_.want_aovs || settings_.want_diagnostics))
       fillPrimaryAovs(frame.aovs, *rays, hits, diagnostics, spp);
+    if (first && settings_.want_alpha) countCoverage(hits, spp);
     shadow_total += shadeGeneration(depth, *rays, paths, primary, shadow_total, frame);
     depths = depth + 1;
     rays = &generations_[depth + 1].rays;
@@ -430,6 +438,14 @@ void Renderer::addPassRadiance(int depths, PrimaryPaths primary) {
           if (hits[k].prim < 0) radiance_[shadows[k].pixel] += shadows[k].radiance;
         });
   }
+}
+
+void Renderer::countCoverage(const std::vector<GrHit>& hits, int spp) {
+  parallelFor(0LL, (long long)(window_pixels_.size()), [&](long long k) {
+    uint32_t hit = 0;
+    for (int s = 0; s < spp; ++s) hit += hits[size_t(k) * spp + s].prim >= 0;
+    coverage_.add(size_t(window_pixels_[k]), hit, uint32_t(spp));
+  });
 }
 
 void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrRay>& rays,
