@@ -36,6 +36,8 @@
 #include "progress.h"
 #include "reference_intersector.h"
 #include "renderer.h"
+#include "standard_input_scene.h"
+#include "standard_streams.h"
 #include "stopwatch.h"
 #include "texture_decoding.h"
 #include "thread_count.h"
@@ -166,7 +168,8 @@ SceneSource loadScene(const Options& o, const FrameJob& first, Scene& first_scen
                                 "render it as it is");
     return source;
   }
-  GltfDocument document = GltfDocument::fromFile(o.scene);
+  GltfDocument document =
+      o.scene == kStandardInput ? readStandardInputScene() : GltfDocument::fromFile(o.scene);
   const size_t animations = document.model().animations.size();
   if (!posed) {
     if (animations > 0)
@@ -573,7 +576,9 @@ int runApplication(const Options& given) {
   stats["device"] = runtime.info().name;
   stats["device_compute_units"] = runtime.info().compute_units;
   stats["host_threads"] = parallelSliceCount();
-  stats["scene"] = o.scene.empty() ? "(default scene)" : o.scene;
+  stats["scene"] = o.scene.empty()             ? "(default scene)"
+                   : o.scene == kStandardInput ? "(standard input)"
+                                               : o.scene;
   stats["load_ms"] = load_ms;
   stats["compile_ms"] = compile_ms;
   stats["programs"] = {{"loaded", runtime.programsLoaded()},

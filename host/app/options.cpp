@@ -248,7 +248,8 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
       "(uniform grid, one processing element per non-empty voxel, two-phase reduction).\n"
       "Without SCENE it renders the built-in default scene.");
   app.add_option("scene", o.scene,
-                 "glTF 2.0 scene (.gltf or .glb), or a mesh: OBJ, PLY, STL, ... (assimp)");
+                 "glTF 2.0 scene (.gltf or .glb), or a mesh: OBJ, PLY, STL, ... (assimp); - reads "
+                 "a .gltf or .glb from standard input");
   app.add_option("-o,--output", o.output,
                  "output image: .png/.jpg (sRGB), .exr (linear) or - (standard output); "
                  "default SCENE.png (the scene's name, here), else gridrt.png");
