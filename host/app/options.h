@@ -46,9 +46,13 @@ struct Options {
   bool pe_interrupt = false;  // emulate the paper's interrupt on the device
   bool primary_only = false;  // primary rays, headlight shading
   std::vector<std::pair<std::string, std::string>> aovs;  // NAME=FILE
-  int repeat = 0;                                         // extra timed frames after the first
-  std::string stats_json;                                 // write statistics as JSON here
-  bool stats = false;                                     // print a statistics table
+  // --aov-file FILE.exr: the image and the AOVs aov_layers names (bare --aov NAME; without
+  // one, kLayerAovNames) as the layers of one OpenEXR file.
+  std::string aov_file;
+  std::vector<std::string> aov_layers;
+  int repeat = 0;          // extra timed frames after the first
+  std::string stats_json;  // write statistics as JSON here
+  bool stats = false;      // print a statistics table
   bool quiet = false;
   bool verbose = false;  // -v: what was chosen (choices_report.h)
   glm::vec3 background{0.0f};

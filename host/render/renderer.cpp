@@ -75,7 +75,8 @@ PixelWindow grownInside(const PixelWindow& w, int width, int height) {
 
 // Keeps the pixels of `inner` (inside `outer`) of an image of `outer`'s pixels with
 // `channels` floats each, in place, row by row.
-void keepWindow(std::vector<float>& image, const PixelWindow& outer, const PixelWindow& inner,
+template <typename T>
+void keepWindow(std::vector<T>& image, const PixelWindow& outer, const PixelWindow& inner,
                 int channels) {
   if (image.empty()) return;
   const size_t row = size_t(inner.width()) * channels;
@@ -208,12 +209,12 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     const bool diag = settings_.want_diagnostics;
     PrimaryAovs& a = frame.aovs;
     a.depth.assign(pixels, -1.0f);
-    a.primid.assign(pixels, -1.0f);
+    a.primid.assign(pixels, -1);
     a.normal.assign(pixels * 3, 0.0f);
     a.shading_normal.assign(pixels * 3, 0.0f);
     a.albedo.assign(pixels * 3, 0.0f);
     a.tests.assign(diag ? pixels : 0, 0.0f);
-    a.pe.assign(diag ? pixels : 0, -1.0f);
+    a.pe.assign(diag ? pixels : 0, -1);
     a.list_length.assign(diag ? pixels : 0, 0.0f);
   }
 
@@ -270,8 +271,9 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     frame.film.width = out.width();
     frame.film.height = out.height();
     PrimaryAovs& a = frame.aovs;
-    for (std::vector<float>* one : {&a.depth, &a.primid, &a.tests, &a.pe, &a.list_length})
+    for (std::vector<float>* one : {&a.depth, &a.tests, &a.list_length})
       keepWindow(*one, win, out, 1);
+    for (std::vector<int32_t>* ids : {&a.primid, &a.pe}) keepWindow(*ids, win, out, 1);
     for (std::vector<float>* three : {&a.normal, &a.shading_normal, &a.albedo})
       keepWindow(*three, win, out, 3);
   }
@@ -459,7 +461,7 @@ void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrRay>& rays,
     const GrHit& hit = hits[r];
     if (hit.prim >= 0) {
       a.depth[p] = hit.t;
-      a.primid[p] = float(hit.prim);
+      a.primid[p] = hit.prim;
       for (int c = 0; c < 3; ++c) a.normal[3 * p + c] = geometric_normals_[hit.prim][c];
       const PrimarySurface surface = primarySurface(hit, rays[r], smooth_triangles);
       for (int c = 0; c < 3; ++c) {
@@ -469,7 +471,7 @@ void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrRay>& rays,
     }
     if (diag) {
       a.tests[p] = float(diagnostics.tests[r]);
-      a.pe[p] = float(diagnostics.winning_pe[r]);
+      a.pe[p] = diagnostics.winning_pe[r];
       a.list_length[p] = float(diagnostics.list_length[r]);
     }
   });

@@ -65,12 +65,12 @@ struct RayCounts {
 // Primary-ray AOVs (sample 0 of each pixel).
 struct PrimaryAovs {
   std::vector<float> depth;           // t of the primary hit (unit direction), -1 on a miss
-  std::vector<float> primid;          // global triangle index, -1 on a miss
+  std::vector<int32_t> primid;        // global triangle index, -1 on a miss
   std::vector<float> normal;          // geometric normal (xyz), 0 on a miss
   std::vector<float> shading_normal;  // the normal shading used, facing the ray (xyz), 0 on a miss
   std::vector<float> albedo;          // linear base colour: factor x texture x COLOR_0 (rgb)
   std::vector<float> tests;           // ray-triangle tests of the primary ray
-  std::vector<float> pe;              // winning PE, -1 on a miss
+  std::vector<int32_t> pe;            // winning PE, -1 on a miss
   std::vector<float> list_length;     // PEs in the traversal list
 };
 

@@ -276,3 +276,29 @@ TEST(ImageOutput, APngHoldsAlphaAndFormatsWithoutItRefuseIt) {
     EXPECT_FALSE(fs::exists(dir + name));
   }
 }
+
+// A multi-layer EXR keeps 32-bit unsigned ids exactly beside float channels: 2^24 + 1 (no
+// float holds it) and a miss, -1, as 2^32 - 1.
+TEST(ImageOutput, LayeredExrKeepsEvery32BitsOfIds) {
+  const std::string path = freshDir("layers") + "/layers.exr";
+  gridrt::LayeredImage image;
+  image.width = 3;
+  image.height = 1;
+  image.channels.push_back(gridrt::floatChannel("depth.Z", {1.5f, -1.0f, 2.25f}, 1, 0));
+  image.channels.push_back(gridrt::idChannel("primid.id", {16777217, -1, 2147483647}));
+  gridrt::writeLayeredImage(path, image, gridrt::OutputKind::Layers);
+  const gridrt::LayeredImage back = gridrt::readLayeredImage(path);
+  const int id = gridrt::channelIndex(back, "primid.id"),
+            depth = gridrt::channelIndex(back, "depth.Z");
+  ASSERT_GE(id, 0);
+  ASSERT_GE(depth, 0);
+  EXPECT_EQ(back.channels[id].type, gridrt::SampleType::UInt);
+  EXPECT_EQ(back.channels[id].uints, (std::vector<uint32_t>{16777217u, 0xFFFFFFFFu, 2147483647u}));
+  EXPECT_EQ(back.channels[depth].type, gridrt::SampleType::Float);
+  EXPECT_EQ(back.channels[depth].floats, (std::vector<float>{1.5f, -1.0f, 2.25f}));
+  const std::string message = renderErrorOf([&] {
+    gridrt::writeLayeredImage(freshDir("layers_tif") + "/layers.tif", image,
+                              gridrt::OutputKind::Layers);
+  });
+  EXPECT_NE(message.find("unsupported multi-layer format"), std::string::npos) << message;
+}

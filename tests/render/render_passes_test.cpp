@@ -46,7 +46,8 @@ class RenderPasses : public test::DefaultSceneTest {
     if (scales) *scales = broken || last != last_total ? -1 : climbed;
     return frame;
   }
-  static size_t differing(const std::vector<float>& a, const std::vector<float>& b) {
+  template <typename T>
+  static size_t differing(const std::vector<T>& a, const std::vector<T>& b) {
     if (a.size() != b.size()) return std::max(a.size(), b.size());
     size_t n = 0;
     for (size_t k = 0; k < a.size(); ++k) n += a[k] != b[k] && !(a[k] != a[k] && b[k] != b[k]);
