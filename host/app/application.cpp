@@ -36,6 +36,8 @@
 #include "progress.h"
 #include "reference_intersector.h"
 #include "renderer.h"
+#include "standard_input_scene.h"
+#include "standard_streams.h"
 #include "stopwatch.h"
 #include "texture_decoding.h"
 #include "thread_count.h"
@@ -112,16 +114,20 @@ struct FrameJob {
   std::optional<double> time;
   std::string output;
   std::vector<std::pair<std::string, std::string>> aovs;
+  std::string aov_file;  // --aov-file, empty if none
 };
 
 std::vector<FrameJob> frameJobs(const Options& o) {
-  if (!o.frames) return {FrameJob{0, o.time, o.output, o.aovs}};
+  if (!o.frames) return {FrameJob{0, o.time, o.output, o.aovs, o.aov_file}};
   const FramePattern output("-o", o.output);
   std::vector<FramePattern> aovs;
   for (const auto& aov : o.aovs) aovs.emplace_back("--aov " + aov.first, aov.second);
   std::vector<FrameJob> jobs;
+  const std::optional<FramePattern> aov_file =
+      o.aov_file.empty() ? std::nullopt
+                         : std::optional<FramePattern>(FramePattern("--aov-file", o.aov_file));
   for (long f = o.frames->first; f <= o.frames->last; ++f) {
-    FrameJob job{f, frameTime(f, o.fps), output.path(f), {}};
+    FrameJob job{f, frameTime(f, o.fps), output.path(f), {}, aov_file ? aov_file->path(f) : ""};
     for (size_t a = 0; a < aovs.size(); ++a)
       job.aovs.emplace_back(o.aovs[a].first, aovs[a].path(f));
     jobs.push_back(std::move(job));
@@ -166,7 +172,8 @@ SceneSource loadScene(const Options& o, const FrameJob& first, Scene& first_scen
                                 "render it as it is");
     return source;
   }
-  GltfDocument document = GltfDocument::fromFile(o.scene);
+  GltfDocument document =
+      o.scene == kStandardInput ? readStandardInputScene() : GltfDocument::fromFile(o.scene);
   const size_t animations = document.model().animations.size();
   if (!posed) {
     if (animations > 0)
@@ -245,9 +252,27 @@ LayeredImage croppedImage(const Options& o, LayeredImage image, float outside) {
   return image;
 }
 
+// --aov-file's image: the film's R, G, B (and A) as the default layer, then each AOV of
+// aov_layers as the layer "NAME." (aov_channels.h), every channel with its own miss value
+// outside a crop window.
+LayeredImage aovLayers(const Options& o, const Frame& frame) {
+  LayeredImage layers = croppedImage(o, filmImage(frame.film), 0.0f);
+  for (const std::string& name : o.aov_layers) {
+    LayeredImage layer;
+    layer.width = frame.film.width;
+    layer.height = frame.film.height;
+    layer.channels = aovChannels(frame.aovs, name, name + ".");
+    layer = croppedImage(o, std::move(layer), aovMissValue(name));
+    for (ImageChannel& c : layer.channels) layers.channels.push_back(std::move(c));
+  }
+  return layers;
+}
+
 void writeOutputs(const Options& o, const FrameJob& job, const Frame& frame) {
   writeLayeredImage(job.output, croppedImage(o, filmImage(frame.film), 0.0f), OutputKind::Image,
                     o.format);
+  if (!job.aov_file.empty())
+    writeLayeredImage(job.aov_file, aovLayers(o, frame), OutputKind::Layers);
   for (const auto& aov : job.aovs) {
     LayeredImage image;
     image.width = frame.film.width;
@@ -273,9 +298,12 @@ RenderSettings renderSettings(const Options& o) {
   settings.aa_samples = o.aa_samples;
   settings.aa_threshold = o.aa_threshold;
   settings.min_path_weight = o.min_path_weight;
-  if (o.crop) settings.crop = *o.crop;   // only the window's rays are traced
-  settings.want_aovs = !o.aovs.empty();  // filling them costs time per frame
+  if (o.crop) settings.crop = *o.crop;  // only the window's rays are traced
+  // Filling them costs time per frame.
+  settings.want_aovs = !o.aovs.empty() || !o.aov_layers.empty();
+  settings.want_alpha = o.alpha;
   for (const auto& aov : o.aovs) settings.want_diagnostics |= isDiagnosticAov(aov.first);
+  for (const auto& name : o.aov_layers) settings.want_diagnostics |= isDiagnosticAov(name);
   return settings;
 }
 
@@ -484,6 +512,7 @@ int runApplication(const Options& given) {
       throw UsageError("'" + job.output + "' exists: replace it with --force, or name the " +
                        "output with -o");
     for (const auto& aov : job.aovs) validateOutputPath(aov.second, OutputKind::Aov);
+    if (!job.aov_file.empty()) validateOutputPath(job.aov_file, OutputKind::Layers);
   }
   validateStatsPath(given.stats_json);
   checkImageFitsHost(given);
@@ -570,7 +599,9 @@ int runApplication(const Options& given) {
   stats["device"] = runtime.info().name;
   stats["device_compute_units"] = runtime.info().compute_units;
   stats["host_threads"] = parallelSliceCount();
-  stats["scene"] = o.scene.empty() ? "(default scene)" : o.scene;
+  stats["scene"] = o.scene.empty()             ? "(default scene)"
+                   : o.scene == kStandardInput ? "(standard input)"
+                                               : o.scene;
   stats["load_ms"] = load_ms;
   stats["compile_ms"] = compile_ms;
   stats["programs"] = {{"loaded", runtime.programsLoaded()},

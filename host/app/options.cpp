@@ -1,6 +1,7 @@
 #include "options.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <regex>
@@ -158,9 +159,11 @@ void checkCombinations(Options& o, const RawOptions& raw) {
   if (given("--animation") && !o.time && !o.frames)
     throw UsageError("--animation: only with --time or --frames");
   const bool has_pes = o.accel == AccelKind::GridRt || o.accel == AccelKind::Dda;
-  for (const auto& aov : o.aovs)
-    if (!has_pes && (aov.first == "pe" || aov.first == "listlen"))
-      throw UsageError("--aov " + aov.first +
+  std::vector<std::string> names = o.aov_layers;
+  for (const auto& aov : o.aovs) names.push_back(aov.first);
+  for (const std::string& name : names)
+    if (!has_pes && (name == "pe" || name == "listlen"))
+      throw UsageError("--aov " + name +
                        ": only the grid intersectors (--accel gridrt, "
                        "dda) have PEs and traversal lists");
 }
@@ -182,6 +185,7 @@ void checkFramePatterns(Options& o) {
   }
   FramePattern("-o", o.output);
   for (const auto& aov : o.aovs) FramePattern("--aov " + aov.first, aov.second);
+  if (!o.aov_file.empty()) FramePattern("--aov-file", o.aov_file);
 }
 
 // -o - writes the image to standard output in --format (png unless named), and nothing
@@ -212,12 +216,25 @@ void finishOutputFormat(Options& o, const RawOptions& raw) {
                      " file)");
 }
 
+// --alpha needs an image format with an alpha channel; an unknown format is refused on
+// its own when the output is checked.
+void checkAlphaFormat(const Options& o) {
+  if (!o.alpha) return;
+  const std::optional<ImageFormat> format = o.format ? o.format : formatOfPath(o.output);
+  if (!format || hasAlpha(*format)) return;
+  const std::string shown =
+      o.output == kStandardOutput ? "standard output" : "-o '" + o.output + "'";
+  throw UsageError("--alpha: " + shown + " is " + formatName(*format) +
+                   ", which has no alpha channel (write .png, .exr or .tif)");
+}
+
 // Two outputs on one path would leave only the last: refused.
 void checkDistinctOutputs(const Options& o) {
   namespace fs = std::filesystem;
   std::vector<std::pair<std::string, std::string>> outputs;
   if (o.output != kStandardOutput) outputs.emplace_back("-o", o.output);
   for (const auto& aov : o.aovs) outputs.emplace_back("--aov " + aov.first, aov.second);
+  if (!o.aov_file.empty()) outputs.emplace_back("--aov-file", o.aov_file);
   if (!o.stats_json.empty()) outputs.emplace_back("--stats-json", o.stats_json);
   std::error_code ec;
   auto key = [&](const std::string& path) {
@@ -236,7 +253,8 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
       "(uniform grid, one processing element per non-empty voxel, two-phase reduction).\n"
       "Without SCENE it renders the built-in default scene.");
   app.add_option("scene", o.scene,
-                 "glTF 2.0 scene (.gltf or .glb), or a mesh: OBJ, PLY, STL, ... (assimp)");
+                 "glTF 2.0 scene (.gltf or .glb), or a mesh: OBJ, PLY, STL, ... (assimp); - reads "
+                 "a .gltf or .glb from standard input");
   app.add_option("-o,--output", o.output,
                  "output image: .png/.jpg (sRGB), .exr (linear) or - (standard output); "
                  "default SCENE.png (the scene's name, here), else gridrt.png");
@@ -245,6 +263,9 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
                  "match it")
       ->check(CLI::IsMember({"png", "jpg", "jpeg", "exr"}));
   app.add_flag("--force", o.force, "without -o, replace an existing SCENE.png");
+  app.add_flag("--alpha", o.alpha,
+               "add alpha: each pixel's share of camera samples that hit (.png, .exr, .tif; "
+               ".exr/.tif colour premultiplied)");
   app.add_option("--width", o.width, "image width in pixels")
       ->capture_default_str()
       ->check(integerIn(1, 65536));
@@ -280,11 +301,15 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
                "primary rays only, headlight shading (the paper's measurement)");
   app.add_option("--aov", raw.aovs,
                  "NAME=FILE (repeatable; .exr): depth, primid, normal, geonormal, albedo, "
-                 "tests, pe, listlen")
-      ->type_name("NAME=FILE")
+                 "tests, pe, listlen; NAME alone: a layer of --aov-file")
+      ->type_name("NAME[=FILE]")
       ->expected(1)  // one value per --aov (the help shows no "..."), so a scene may follow
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->allow_extra_args(false);
+  app.add_option("--aov-file", o.aov_file,
+                 "one .exr with the image and the AOVs as layers (depth.Z, primid.id, ...): "
+                 "the bare --aov NAMEs, else depth, primid, normal, geonormal, albedo")
+      ->type_name("FILE");
   app.add_option("--repeat", o.repeat, "render N more frames after the first, for timing")
       ->capture_default_str()
       ->check(integerIn(0, 100000));
@@ -351,6 +376,37 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.set_version_flag("--version", std::string("gridrt ") + GRIDRT_VERSION);
 }
 
+// --aov NAME=FILE: the AOV's own file; --aov NAME: a layer of --aov-file, which without
+// any holds every AOV but the diagnostics.
+void parseAovs(Options& o, const RawOptions& raw) {
+  for (const auto& spec : raw.aovs) {
+    size_t eq = spec.find('=');
+    std::string name = eq == std::string::npos ? spec : spec.substr(0, eq);
+    if (eq + 1 == spec.size() || !isAovName(name))
+      throw UsageError(
+          "--aov: expected NAME=FILE or NAME with NAME one of depth, primid, normal, geonormal, "
+          "albedo, tests, pe, listlen; got '" +
+          spec + "'");
+    if (eq != std::string::npos)
+      o.aovs.emplace_back(name, spec.substr(eq + 1));
+    else if (std::find(o.aov_layers.begin(), o.aov_layers.end(), name) == o.aov_layers.end())
+      o.aov_layers.push_back(name);
+  }
+  if (o.aov_file.empty()) {
+    if (!o.aov_layers.empty())
+      throw UsageError("--aov " + o.aov_layers.front() +
+                       ": without =FILE only with --aov-file, whose layer it is");
+    return;
+  }
+  if (o.aov_file == kStandardOutput)
+    throw UsageError("--aov-file: only -o can write to standard output (-)");
+  if (formatOfPath(o.aov_file) != ImageFormat::Exr)
+    throw UsageError("--aov-file: '" + o.aov_file +
+                     "' is not an .exr file (only OpenEXR holds layers of floats and integers)");
+  if (o.aov_layers.empty())
+    o.aov_layers.assign(std::begin(kLayerAovNames), std::end(kLayerAovNames));
+}
+
 void finishCrop(Options& o, const RawOptions& raw) {
   o.crop_output = raw.crop_output == "window" ? CropOutput::Window : CropOutput::Full;
   if (raw.crop.empty()) return;
@@ -384,18 +440,10 @@ void finish(Options& o, const RawOptions& raw) {
     if (*o.eye == *o.target) throw UsageError("--look-at: eye and target are the same point");
   }
   if (!raw.frames.empty()) o.frames = parseFrameRange(raw.frames);
-  for (const auto& spec : raw.aovs) {
-    size_t eq = spec.find('=');
-    std::string name = eq == std::string::npos ? spec : spec.substr(0, eq);
-    if (eq == std::string::npos || eq + 1 == spec.size() || !isAovName(name))
-      throw UsageError(
-          "--aov: expected NAME=FILE with NAME one of depth, primid, normal, geonormal, "
-          "albedo, tests, pe, listlen; got '" +
-          spec + "'");
-    o.aovs.emplace_back(name, spec.substr(eq + 1));
-  }
+  parseAovs(o, raw);
   finishOutputFormat(o, raw);
   finishCrop(o, raw);
+  checkAlphaFormat(o);
   checkCombinations(o, raw);
   checkFramePatterns(o);
   checkDistinctOutputs(o);

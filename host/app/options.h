@@ -28,6 +28,9 @@ struct Options {
   std::optional<ImageFormat> format;  // --format; always set for -o - (default png)
   bool output_named = false;          // -o given: the user asked for that file, existing or not
   bool force = false;                 // --force: a derived output may replace an existing file
+  // --alpha: the image gets an alpha channel, each pixel's share of camera samples that hit
+  // the scene (png, exr, tif only); the colour is associated with it (docs/output.md).
+  bool alpha = false;
   int width = 640;
   int height = 480;
   // --width or --height given: the image keeps that size. Otherwise a scene camera's
@@ -43,9 +46,13 @@ struct Options {
   bool pe_interrupt = false;  // emulate the paper's interrupt on the device
   bool primary_only = false;  // primary rays, headlight shading
   std::vector<std::pair<std::string, std::string>> aovs;  // NAME=FILE
-  int repeat = 0;                                         // extra timed frames after the first
-  std::string stats_json;                                 // write statistics as JSON here
-  bool stats = false;                                     // print a statistics table
+  // --aov-file FILE.exr: the image and the AOVs aov_layers names (bare --aov NAME; without
+  // one, kLayerAovNames) as the layers of one OpenEXR file.
+  std::string aov_file;
+  std::vector<std::string> aov_layers;
+  int repeat = 0;          // extra timed frames after the first
+  std::string stats_json;  // write statistics as JSON here
+  bool stats = false;      // print a statistics table
   bool quiet = false;
   bool verbose = false;  // -v: what was chosen (choices_report.h)
   glm::vec3 background{0.0f};

@@ -106,10 +106,22 @@ LayeredImage filmImage(const Film& film) {
   LayeredImage image;
   image.width = film.width;
   image.height = film.height;
-  for (int c = 0; c < 3; ++c)
+  for (int c = 0; c < 3; ++c) {
     image.channels.push_back(floatChannel(std::string(1, "RGB"[c]), film.rgb, 3, c));
-  if (!film.alpha.empty()) image.channels.push_back({"A", SampleType::Float, film.alpha, {}});
-  for (int c = 0; c < 3; ++c) image.background[c] = film.background[c];
+    image.background[c] = film.background[c];
+  }
+  if (film.alpha.empty()) return image;
+  // Associated with the alpha (layered_image.h): the background's share taken out.
+  for (int c = 0; c < 3; ++c) {
+    std::vector<float>& colour = image.channels[c].floats;
+    for (size_t p = 0; p < colour.size(); ++p) {
+      const float a = film.alpha[p];
+      colour[p] = a <= 0.0f   ? 0.0f
+                  : a >= 1.0f ? colour[p]
+                              : colour[p] - (1.0f - a) * image.background[c];
+    }
+  }
+  image.channels.push_back({"A", SampleType::Float, film.alpha, {}});
   return image;
 }
 

@@ -38,9 +38,10 @@ ImageFormat validateOutputPath(const std::string& path, OutputKind kind = Output
 void writeLayeredImage(const std::string& path, const LayeredImage& image, OutputKind kind,
                        std::optional<ImageFormat> format = std::nullopt);
 
-// The film as R, G, B and, where it has alpha and the format holds it, A: .png/.jpg/.jpeg
-// 8-bit sRGB-encoded, clamped to [0,1] (NaN as 0); .exr, .hdr, .tif and .tiff linear
-// float. docs/output.md says what the colour holds where alpha is below 1.
+// The film as R, G, B and, where it has alpha, A, with the colour associated with it
+// (layered_image.h): .png/.jpg/.jpeg 8-bit sRGB-encoded, clamped to [0,1] (NaN as 0);
+// .exr, .hdr, .tif and .tiff linear float; alpha only in .png, .exr, .tif and .tiff.
+// docs/output.md says what the colour holds where alpha is below 1.
 LayeredImage filmImage(const Film& film);
 void writeImage(const std::string& path, const Film& film,
                 std::optional<ImageFormat> format = std::nullopt);

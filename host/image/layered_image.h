@@ -28,8 +28,11 @@ struct LayeredImage {
   // The display window, from 0,0; 0: the data window itself (x and y then 0).
   int full_width = 0, full_height = 0;
   std::vector<ImageChannel> channels;
-  // The colour rays that missed were given: with an alpha channel, a PNG stores its colours
-  // unassociated from it, and float files keep it as the attribute "gridrt:background".
+  // The colour rays that missed were given. With an alpha channel "A", R, G and B are
+  // associated (premultiplied) with it, as OpenEXR defines colour: the rendered colour less
+  // the background's share, (1 - A) * background (0 where A is 0), so the rendered colour
+  // is R + (1 - A) * background. A PNG stores its colours unassociated from it (R / A, the
+  // background where A is 0); float files keep it as the attribute "gridrt:background".
   std::array<float, 3> background{0.0f, 0.0f, 0.0f};
 };
 

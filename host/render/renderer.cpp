@@ -75,7 +75,8 @@ PixelWindow grownInside(const PixelWindow& w, int width, int height) {
 
 // Keeps the pixels of `inner` (inside `outer`) of an image of `outer`'s pixels with
 // `channels` floats each, in place, row by row.
-void keepWindow(std::vector<float>& image, const PixelWindow& outer, const PixelWindow& inner,
+template <typename T>
+void keepWindow(std::vector<T>& image, const PixelWindow& outer, const PixelWindow& inner,
                 int channels) {
   if (image.empty()) return;
   const size_t row = size_t(inner.width()) * channels;
@@ -218,16 +219,17 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     std::fill(radiance_.begin() + size_t(y) * fw, radiance_.begin() + size_t(y + 1) * fw,
               glm::vec3(0.0f));
   });
+  if (settings_.want_alpha) coverage_.reset(pixels);
   if (settings_.want_aovs || settings_.want_diagnostics) {
     const bool diag = settings_.want_diagnostics;
     PrimaryAovs& a = frame.aovs;
     a.depth.assign(pixels, -1.0f);
-    a.primid.assign(pixels, -1.0f);
+    a.primid.assign(pixels, -1);
     a.normal.assign(pixels * 3, 0.0f);
     a.shading_normal.assign(pixels * 3, 0.0f);
     a.albedo.assign(pixels * 3, 0.0f);
     a.tests.assign(diag ? pixels : 0, 0.0f);
-    a.pe.assign(diag ? pixels : 0, -1.0f);
+    a.pe.assign(diag ? pixels : 0, -1);
     a.list_length.assign(diag ? pixels : 0, 0.0f);
   }
 
@@ -268,18 +270,25 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
 
   frame.film.width = fw;
   frame.film.height = fh;
+  frame.film.background = settings_.background;
   frame.film.rgb.resize(pixels * 3);
   parallelFor(0LL, (long long)(pixels), [&](long long p) {
     for (int c = 0; c < 3; ++c) frame.film.rgb[3 * p + c] = radiance_[p][c];
   });
+  if (settings_.want_alpha)
+    frame.film.alpha = coverage_.alpha();
+  else
+    frame.film.alpha.clear();
   if (output_window_ != win) {  // the ring of adaptive AA's neighbours is not output
     const PixelWindow& out = output_window_;
     keepWindow(frame.film.rgb, win, out, 3);
+    keepWindow(frame.film.alpha, win, out, 1);
     frame.film.width = out.width();
     frame.film.height = out.height();
     PrimaryAovs& a = frame.aovs;
-    for (std::vector<float>* one : {&a.depth, &a.primid, &a.tests, &a.pe, &a.list_length})
+    for (std::vector<float>* one : {&a.depth, &a.tests, &a.list_length})
       keepWindow(*one, win, out, 1);
+    for (std::vector<int32_t>* ids : {&a.primid, &a.pe}) keepWindow(*ids, win, out, 1);
     for (std::vector<float>* three : {&a.normal, &a.shading_normal, &a.albedo})
       keepWindow(*three, win, out, 3);
   }
@@ -405,6 +414,7 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
         });
     if (first && aov_pass && (settings_.want_aovs || settings_.want_diagnostics))
       fillPrimaryAovs(frame.aovs, *rays, hits, diagnostics, spp);
+    if (first && settings_.want_alpha) countCoverage(hits, spp);
     shadow_total += shadeGeneration(depth, *rays, paths, primary, shadow_total, frame);
     depths = depth + 1;
     rays = &generations_[depth + 1].rays;
@@ -451,6 +461,14 @@ void Renderer::addPassRadiance(int depths, PrimaryPaths primary) {
   }
 }
 
+void Renderer::countCoverage(const std::vector<GrHit>& hits, int spp) {
+  parallelFor(0LL, (long long)(window_pixels_.size()), [&](long long k) {
+    uint32_t hit = 0;
+    for (int s = 0; s < spp; ++s) hit += hits[size_t(k) * spp + s].prim >= 0;
+    coverage_.add(size_t(window_pixels_[k]), hit, uint32_t(spp));
+  });
+}
+
 void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrRay>& rays,
                                const std::vector<GrHit>& hits, const RayDiagnostics& diagnostics,
                                int spp) {
@@ -462,7 +480,7 @@ void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrRay>& rays,
     const GrHit& hit = hits[r];
     if (hit.prim >= 0) {
       a.depth[p] = hit.t;
-      a.primid[p] = float(hit.prim);
+      a.primid[p] = hit.prim;
       for (int c = 0; c < 3; ++c) a.normal[3 * p + c] = geometric_normals_[hit.prim][c];
       const PrimarySurface surface = primarySurface(hit, rays[r], smooth_triangles);
       for (int c = 0; c < 3; ++c) {
@@ -472,7 +490,7 @@ void Renderer::fillPrimaryAovs(PrimaryAovs& a, const std::vector<GrRay>& rays,
     }
     if (diag) {
       a.tests[p] = float(diagnostics.tests[r]);
-      a.pe[p] = float(diagnostics.winning_pe[r]);
+      a.pe[p] = diagnostics.winning_pe[r];
       a.list_length[p] = float(diagnostics.list_length[r]);
     }
   });

@@ -15,6 +15,7 @@
 #include "hit_surfaces.h"
 #include "intersector.h"
 #include "pixel_window.h"
+#include "sample_coverage.h"
 #include "scene.h"
 #include "see_through_hits.h"
 #include "surface_textures.h"
@@ -40,6 +41,9 @@ struct RenderSettings {
   ShadingModel shading = ShadingModel::Phong;  // punctual lights: Phong or the glTF BRDF
   bool want_aovs = true;          // fill the depth / primid / normal / albedo AOVs of primary rays
   bool want_diagnostics = false;  // fill tests / PE / list-length AOVs of primary rays
+  // Fill Film::alpha: per pixel, the share of its camera samples (all of them: every spp
+  // sample, adaptive refinement too) whose ray hit geometry. Off: the film has no alpha.
+  bool want_alpha = false;
   PixelWindow crop;  // render only these pixels (the film and AOVs hold the window alone)
   // Adaptive supersampling (--aa adaptive): centres first, then aa_samples jittered samples
   // where a pixel differs from a 4-neighbour by more than aa_threshold (any channel).
@@ -64,12 +68,12 @@ struct RayCounts {
 // Primary-ray AOVs (sample 0 of each pixel).
 struct PrimaryAovs {
   std::vector<float> depth;           // t of the primary hit (unit direction), -1 on a miss
-  std::vector<float> primid;          // global triangle index, -1 on a miss
+  std::vector<int32_t> primid;        // global triangle index, -1 on a miss
   std::vector<float> normal;          // geometric normal (xyz), 0 on a miss
   std::vector<float> shading_normal;  // the normal shading used, facing the ray (xyz), 0 on a miss
   std::vector<float> albedo;          // linear base colour: factor x texture x COLOR_0 (rgb)
   std::vector<float> tests;           // ray-triangle tests of the primary ray
-  std::vector<float> pe;              // winning PE, -1 on a miss
+  std::vector<int32_t> pe;            // winning PE, -1 on a miss
   std::vector<float> list_length;     // PEs in the traversal list
 };
 
@@ -180,6 +184,9 @@ class Renderer {
   // renderer would: each depth's own radiance, then its shadow rays that reached their
   // light (so every pixel's sum is the same, bit for bit).
   void addPassRadiance(int depths, PrimaryPaths primary);
+  // Adds the pass's camera samples of window_pixels_ (spp each, their hits in `hits`) to
+  // coverage_.
+  void countCoverage(const std::vector<GrHit>& hits, int spp);
   // The AOVs of window_pixels_ (the arrays sized for the film by render).
   void fillPrimaryAovs(PrimaryAovs& aovs, const std::vector<GrRay>& rays,
                        const std::vector<GrHit>& hits, const RayDiagnostics& diagnostics, int spp);
@@ -275,6 +282,7 @@ class Renderer {
   std::vector<int> block_order_;  // the window's pixels in 4x4 blocks (pixel_blocks.h)
   int block_order_width_ = 0, block_order_height_ = 0;  // the window block_order_ is for
   std::vector<glm::vec3> radiance_;                     // per film pixel accumulator
+  SampleCoverage coverage_;  // per film pixel: camera samples and their hits (want_alpha)
 };
 
 }  // namespace gridrt

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -224,4 +225,80 @@ TEST(ImageOutput, ReadingAMissingFileThrowsNamingIt) {
   std::string message = renderErrorOf([&] { gridrt::readImage(path); });
   EXPECT_EQ(message.rfind("cannot read '" + path + "': ", 0), 0u) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+// A film with alpha: pixels the background alone (alpha 0), half covered by 0.8 grey, and
+// covered.
+Film filmWithAlpha() {
+  Film film = rgbFilm(3, 1, {0.2f, 0.4f, 0.6f, 0.5f, 0.6f, 0.7f, 0.9f, 0.1f, 0.3f});
+  film.alpha = {0.0f, 0.5f, 1.0f};
+  film.background = {0.2f, 0.4f, 0.6f};
+  return film;
+}
+
+TEST(ImageOutput, FloatFilesHoldColourPremultipliedByAlpha) {
+  const std::string dir = freshDir("alpha");
+  for (const char* name : {"/out.exr", "/out.tif"}) {
+    gridrt::writeImage(dir + name, filmWithAlpha());
+    const gridrt::LayeredImage image = gridrt::readLayeredImage(dir + name);
+    ASSERT_EQ(image.channels.size(), 4u) << name;
+    const std::vector<std::string> names{"R", "G", "B", "A"};
+    const std::vector<std::vector<float>> want{
+        {0.0f, 0.5f - 0.5f * 0.2f, 0.9f},  // the background's share taken out
+        {0.0f, 0.6f - 0.5f * 0.4f, 0.1f},
+        {0.0f, 0.7f - 0.5f * 0.6f, 0.3f},
+        {0.0f, 0.5f, 1.0f}};
+    for (size_t c = 0; c < 4; ++c) {
+      EXPECT_EQ(image.channels[c].name, names[c]) << name;
+      EXPECT_EQ(image.channels[c].floats, want[c]) << name << " " << names[c];
+    }
+    // OpenEXR keeps the background as an attribute; TIFF has no place for it.
+    const std::array<float, 3> background = name == std::string("/out.exr")
+                                                ? std::array<float, 3>{0.2f, 0.4f, 0.6f}
+                                                : std::array<float, 3>{0.0f, 0.0f, 0.0f};
+    EXPECT_EQ(image.background, background) << name;
+  }
+}
+
+TEST(ImageOutput, APngHoldsAlphaAndFormatsWithoutItRefuseIt) {
+  const std::string dir = freshDir("alpha_formats");
+  gridrt::writeImage(dir + "/out.png", filmWithAlpha());
+  const ImageData png = gridrt::readImage(dir + "/out.png");
+  ASSERT_EQ(png.channels, 4);
+  EXPECT_EQ(png.pixels[3], 0.0f);
+  EXPECT_NEAR(png.pixels[7], 128.0f / 255.0f, 1e-6f);
+  EXPECT_EQ(png.pixels[11], 1.0f);
+  for (const char* name : {"/out.jpg", "/out.hdr"}) {
+    const std::string message =
+        renderErrorOf([&] { gridrt::writeImage(dir + name, filmWithAlpha()); });
+    EXPECT_NE(message.find(dir + name), std::string::npos) << message;
+    EXPECT_NE(message.find("holds no alpha channel"), std::string::npos) << message;
+    EXPECT_FALSE(fs::exists(dir + name));
+  }
+}
+
+// A multi-layer EXR keeps 32-bit unsigned ids exactly beside float channels: 2^24 + 1 (no
+// float holds it) and a miss, -1, as 2^32 - 1.
+TEST(ImageOutput, LayeredExrKeepsEvery32BitsOfIds) {
+  const std::string path = freshDir("layers") + "/layers.exr";
+  gridrt::LayeredImage image;
+  image.width = 3;
+  image.height = 1;
+  image.channels.push_back(gridrt::floatChannel("depth.Z", {1.5f, -1.0f, 2.25f}, 1, 0));
+  image.channels.push_back(gridrt::idChannel("primid.id", {16777217, -1, 2147483647}));
+  gridrt::writeLayeredImage(path, image, gridrt::OutputKind::Layers);
+  const gridrt::LayeredImage back = gridrt::readLayeredImage(path);
+  const int id = gridrt::channelIndex(back, "primid.id"),
+            depth = gridrt::channelIndex(back, "depth.Z");
+  ASSERT_GE(id, 0);
+  ASSERT_GE(depth, 0);
+  EXPECT_EQ(back.channels[id].type, gridrt::SampleType::UInt);
+  EXPECT_EQ(back.channels[id].uints, (std::vector<uint32_t>{16777217u, 0xFFFFFFFFu, 2147483647u}));
+  EXPECT_EQ(back.channels[depth].type, gridrt::SampleType::Float);
+  EXPECT_EQ(back.channels[depth].floats, (std::vector<float>{1.5f, -1.0f, 2.25f}));
+  const std::string message = renderErrorOf([&] {
+    gridrt::writeLayeredImage(freshDir("layers_tif") + "/layers.tif", image,
+                              gridrt::OutputKind::Layers);
+  });
+  EXPECT_NE(message.find("unsupported multi-layer format"), std::string::npos) << message;
 }

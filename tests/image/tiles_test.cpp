@@ -200,6 +200,37 @@ TEST(Tiles, MergedPngIsTheFullRendersPngByteForByte) {
                       << " bytes)";
 }
 
+// With --alpha the tiles hold premultiplied colour and the background: the merged PNG's
+// unassociated colour and alpha are the full render's byte for byte (the bunny, with the
+// background around it and partly covered edge pixels).
+TEST(Tiles, MergedPngWithAlphaIsTheFullRendersPngByteForByte) {
+  if (!std::filesystem::exists(mergeTilesBinary()))
+    GTEST_SKIP() << "merge_tiles is not built at " << mergeTilesBinary();
+  const std::vector<Rect> tiles{{0, 0, 23, 17}, {23, 0, 64, 17}, {0, 17, 23, 48}, {23, 17, 64, 48}};
+  const std::vector<std::string> flags{gridrt::test::modelScene("bunny_res4.glb"),
+                                       "--spp",
+                                       "3",
+                                       "--alpha",
+                                       "--background",
+                                       "0.2,0.4,0.6"};
+  const std::string full = tempPath("alpha_full.png"), merged = tempPath("alpha_merged.png");
+  render(full, flags);
+  std::vector<std::string> merge{mergeTilesBinary(), merged};
+  for (size_t k = 0; k < tiles.size(); ++k) {
+    std::string tile = tempPath("alpha_tile" + std::to_string(k) + ".exr");
+    std::vector<std::string> tile_flags = flags;
+    tile_flags.insert(tile_flags.end(), {"--crop", tiles[k].text(), "--crop-output", "window"});
+    render(tile, tile_flags);
+    merge.push_back(tile);
+  }
+  expectSuccess(merge);
+  EXPECT_EQ(gridrt::readImage(full).channels, 4);
+  const std::string a = fileBytes(full), b = fileBytes(merged);
+  ASSERT_GT(a.size(), 100u);
+  EXPECT_TRUE(a == b) << "merged PNG (" << b.size() << " bytes) differs from gridrt's (" << a.size()
+                      << " bytes)";
+}
+
 // A one-channel AOV has no colours to encode: an 8-bit OUT is refused, nothing written.
 TEST(Tiles, EightBitOutputOfNonRgbTilesIsRefused) {
   if (!std::filesystem::exists(mergeTilesBinary()))

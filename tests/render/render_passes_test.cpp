@@ -1,6 +1,6 @@
 // A frame larger than RenderSettings::max_pass_rays is rendered in passes of whole rows
 // (and adaptive supersampling's extra samples in passes of whole pixels). A pixel lies in
-// one pass, so the image and the AOVs must equal the one-pass render bit for bit.
+// one pass, so the image, its alpha and the AOVs must equal the one-pass render bit for bit.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -46,7 +46,8 @@ class RenderPasses : public test::DefaultSceneTest {
     if (scales) *scales = broken || last != last_total ? -1 : climbed;
     return frame;
   }
-  static size_t differing(const std::vector<float>& a, const std::vector<float>& b) {
+  template <typename T>
+  static size_t differing(const std::vector<T>& a, const std::vector<T>& b) {
     if (a.size() != b.size()) return std::max(a.size(), b.size());
     size_t n = 0;
     for (size_t k = 0; k < a.size(); ++k) n += a[k] != b[k] && !(a[k] != a[k] && b[k] != b[k]);
@@ -54,6 +55,8 @@ class RenderPasses : public test::DefaultSceneTest {
   }
   void expectSameFrame(const Frame& want, const Frame& got, const std::string& what) {
     EXPECT_EQ(differing(want.film.rgb, got.film.rgb), 0u) << what << ": image";
+    EXPECT_EQ(differing(want.film.alpha, got.film.alpha), 0u) << what << ": alpha";
+    EXPECT_EQ(want.film.alpha.size(), size_t(want.film.width) * want.film.height) << what;
     EXPECT_EQ(differing(want.aovs.depth, got.aovs.depth), 0u) << what << ": depth";
     EXPECT_EQ(differing(want.aovs.primid, got.aovs.primid), 0u) << what << ": primid";
     EXPECT_EQ(differing(want.aovs.normal, got.aovs.normal), 0u) << what << ": normal";
@@ -75,6 +78,7 @@ RenderSettings small() {
   s.height = 97;  // not a multiple of the bands' heights: a shorter last band
   s.want_aovs = true;
   s.want_diagnostics = true;
+  s.want_alpha = true;
   return s;
 }
 

@@ -59,10 +59,11 @@ const ImageChannel& colourChannel(const LayeredImage& image, const char* name) {
 }
 
 // PNG and JPEG: sRGB-encoded after clamping to [0, 1] (NaN as 0), with OpenImageIO's own
-// formula, in one pass on all cores. A PNG with alpha stores its colour unassociated, as
-// PNG defines it: where a pixel is partly covered (0 < alpha < 1), the colour less the
-// background's share, divided by alpha, so that laid over the render's background it gives
-// the rendered colour again; covered and uncovered pixels keep their colour as rendered.
+// formula, in one pass on all cores. With an alpha channel (PNG only), the image's colour
+// is associated with it (layered_image.h) and a PNG stores it unassociated, as PNG defines
+// it: a partly covered pixel's colour divided by its alpha, so that laid over the render's
+// background it gives the rendered colour again; a covered pixel keeps its colour, an
+// uncovered one is given the background.
 std::vector<unsigned char> encodeEightBit(const LayeredImage& image, const std::string& format) {
   if (image.x != 0 || image.y != 0 ||
       (image.full_width && (image.full_width != image.width || image.full_height != image.height)))
@@ -70,7 +71,8 @@ std::vector<unsigned char> encodeEightBit(const LayeredImage& image, const std::
   const ImageChannel* rgb[3] = {&colourChannel(image, "R"), &colourChannel(image, "G"),
                                 &colourChannel(image, "B")};
   const int a = channelIndex(image, "A");
-  const bool alpha = format == "png" && a >= 0;
+  if (a >= 0 && format != "png") fail(format + " holds no alpha channel (use .png, .exr or .tif)");
+  const bool alpha = a >= 0;
   if (alpha && image.channels[a].type != SampleType::Float) fail("alpha must be a float channel");
   const int nc = alpha ? 4 : 3;
   const long long pixels = (long long)image.width * image.height;
@@ -84,8 +86,10 @@ std::vector<unsigned char> encodeEightBit(const LayeredImage& image, const std::
     }
     for (int c = 0; c < 3; ++c) {
       float v = rgb[c]->floats[p];
-      if (coverage > 0.0f && coverage < 1.0f)
-        v = (v - (1.0f - coverage) * image.background[c]) / coverage;
+      if (coverage == 0.0f)
+        v = image.background[c];
+      else if (coverage < 1.0f)
+        v /= coverage;
       encoded[size_t(p) * nc + c] =
           OIIO::linear_to_sRGB(std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f));
     }
@@ -102,11 +106,13 @@ OIIO::TypeDesc typeOf(SampleType type) {
   return type == SampleType::UInt ? OIIO::TypeDesc::UINT32 : OIIO::TypeDesc::FLOAT;
 }
 
-// EXR, TIFF and HDR: every channel's 32-bit values as they are (HDR: R, G, B only), with
-// the data window.
+// EXR, TIFF and HDR: every channel's 32-bit values as they are (HDR: R, G, B only, and no
+// alpha), with the data window. An alpha channel is associated alpha, OpenEXR's and TIFF's
+// default: the colour holds no share of the background (layered_image.h).
 std::vector<unsigned char> encodeChannels(const LayeredImage& image, const std::string& format) {
   std::vector<const ImageChannel*> channels;
   if (format == "hdr") {
+    if (channelIndex(image, "A") >= 0) fail("hdr holds no alpha channel (use .exr or .tif)");
     for (const char* name : {"R", "G", "B"}) channels.push_back(&colourChannel(image, name));
   } else {
     for (const ImageChannel& c : image.channels) channels.push_back(&c);
@@ -188,8 +194,9 @@ LayeredImage read(const std::string& path) {
     image.channels.push_back(std::move(channel));
   }
   const OIIO::ParamValue* background = spec.find_attribute("gridrt:background");
-  if (background &&
-      background->type() == OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::VEC3))
+  // OpenEXR reads it back as a vector (a V3f): any three floats will do.
+  if (background && background->type().basetype == OIIO::TypeDesc::FLOAT &&
+      background->type().aggregate == OIIO::TypeDesc::VEC3 && background->type().arraylen == 0)
     std::memcpy(image.background.data(), background->data(), sizeof image.background);
   return image;
 }
