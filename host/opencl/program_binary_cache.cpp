@@ -13,6 +13,8 @@
 #include <iterator>
 #include <utility>
 
+#include "file_bytes.h"
+
 namespace gridrt {
 
 namespace {
@@ -68,8 +70,9 @@ std::optional<std::vector<unsigned char>> ProgramBinaryCache::load(const std::st
   char newline = 0;
   if (!(in >> length >> checksum) || !in.get(newline) || newline != '\n' || length == 0)
     return std::nullopt;
-  std::vector<unsigned char> binary((std::istreambuf_iterator<char>(in)), {});
-  if (binary.size() != length || fnv1a(binary.data(), binary.size()) != checksum)
+  std::vector<unsigned char> binary;
+  if (!readStreamBytes(in, binary) || binary.size() != length ||
+      fnv1a(binary.data(), binary.size()) != checksum)
     return std::nullopt;
   std::error_code ec;
   fs::last_write_time(path, fs::file_time_type::clock::now(), ec);  // used now

@@ -21,6 +21,7 @@
 #include <system_error>
 
 #include "errors.h"
+#include "file_bytes.h"
 #include "gltf_accessors.h"
 #include "gltf_compressed_input.h"
 #include "gltf_draco.h"
@@ -137,7 +138,10 @@ bool guardedReadFile(std::vector<unsigned char>* out, std::string* err, const st
     if (err) *err += std::string("cannot open ") + path + ": " + std::strerror(errno);
     return false;
   }
-  out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (!readStreamBytes(in, *out)) {
+    if (err) *err += "read error in " + path;
+    return false;
+  }
   return true;
 }
 
@@ -986,9 +990,8 @@ std::vector<unsigned char> readSceneFile(const std::string& path) {
   if (fs::is_directory(path, ec)) cannotOpen(path, "is a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) cannotOpen(path, std::strerror(errno));
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
-                                   std::istreambuf_iterator<char>());
-  if (in.bad()) cannotOpen(path, "read error");
+  std::vector<unsigned char> bytes;
+  if (!readStreamBytes(in, bytes)) cannotOpen(path, "read error");
   return bytes;
 }
 
