@@ -26,21 +26,13 @@ using test::tempPath;
 constexpr int kWidth = 48, kHeight = 36;
 const std::vector<float> kBackground{0.2f, 0.4f, 0.6f};
 
-bool haveDevice() { return runCommand({test::gridrtBinary(), "--list-devices"}).exit_code == 0; }
+bool haveDevice() { return test::gridrtHasDevice(); }
 
 // The bunny (background around it) at 48x36 with `flags`.
 std::vector<std::string> gridrt(const std::vector<std::string>& flags) {
-  std::vector<std::string> argv{test::gridrtBinary(),
-                                test::modelScene("bunny_res4.glb"),
-                                "-q",
-                                "--width",
-                                std::to_string(kWidth),
-                                "--height",
-                                std::to_string(kHeight),
-                                "--background",
-                                "0.2,0.4,0.6"};
+  std::vector<std::string> argv = {"--background", "0.2,0.4,0.6"};
   argv.insert(argv.end(), flags.begin(), flags.end());
-  return argv;
+  return test::gridrtCommand(test::modelScene("bunny_res4.glb"), kWidth, kHeight, argv);
 }
 
 LayeredImage rendered(const std::string& name, const std::vector<std::string>& flags) {

@@ -24,19 +24,11 @@ using test::runCommand;
 
 constexpr int kWidth = 48, kHeight = 36;
 
-bool haveDevice() { return runCommand({test::gridrtBinary(), "--list-devices"}).exit_code == 0; }
+bool haveDevice() { return test::gridrtHasDevice(); }
 
 // The bunny (misses around it) at 48x36 with `args`.
 std::vector<std::string> gridrt(const std::vector<std::string>& args) {
-  std::vector<std::string> argv{test::gridrtBinary(),
-                                test::modelScene("bunny_res4.glb"),
-                                "-q",
-                                "--width",
-                                std::to_string(kWidth),
-                                "--height",
-                                std::to_string(kHeight)};
-  argv.insert(argv.end(), args.begin(), args.end());
-  return argv;
+  return test::gridrtCommand(test::modelScene("bunny_res4.glb"), kWidth, kHeight, args);
 }
 
 void expectSuccess(const std::vector<std::string>& argv) {

@@ -30,7 +30,7 @@ using gridrt::test::tempPath;
 
 constexpr int kWidth = 64, kHeight = 48;
 
-bool haveDevice() { return runCommand({gridrtBinary(), "--list-devices"}).exit_code == 0; }
+bool haveDevice() { return gridrt::test::gridrtHasDevice(); }
 
 struct Render {
   gridrt::ImageData image, depth;

@@ -33,7 +33,7 @@ gridrt::Options parse(std::vector<std::string> words) {
   return *gridrt::parseCommandLine(int(argv.size()), argv.data());
 }
 
-bool haveDevice() { return runCommand({gridrtBinary(), "--list-devices"}).exit_code == 0; }
+bool haveDevice() { return gridrt::test::gridrtHasDevice(); }
 
 // Sets an environment variable for this process and the commands it runs, until the end of
 // the scope.

@@ -74,4 +74,19 @@ inline std::string joinArgs(const std::vector<std::string>& argv) {
   return s;
 }
 
+// Whether gridrt finds an OpenCL device (the CLI tests that render skip without one).
+inline bool gridrtHasDevice() {
+  return runCommand({gridrtBinary(), "--list-devices"}).exit_code == 0;
+}
+
+// gridrt on `scene` at width x height, quiet, then `flags`.
+inline std::vector<std::string> gridrtCommand(const std::string& scene, int width, int height,
+                                              const std::vector<std::string>& flags) {
+  std::vector<std::string> argv{
+      gridrtBinary(),        scene, "-q", "--width", std::to_string(width), "--height",
+      std::to_string(height)};
+  argv.insert(argv.end(), flags.begin(), flags.end());
+  return argv;
+}
+
 }  // namespace gridrt::test
