@@ -21,8 +21,8 @@ TEST(ContactSheet, RendersEveryModelOfAFolderIntoOneSheetAndLogsFailures) {
   std::ofstream(models + "/broken.gltf") << "{ not json";
   const std::string sheet = test::tempPath("sheet.png");
   setenv("GRIDRT", test::gridrtBinary().c_str(), 1);
-  const test::CommandResult r = test::runCommand(
-      {test::sourcePath("tools/contact_sheet.sh"), models, sheet, "32", "2"});
+  const test::CommandResult r =
+      test::runCommand({test::sourcePath("tools/contact_sheet.sh"), models, sheet, "32", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string log = test::readWholeFile(test::tempPath("sheet.log"));
   EXPECT_NE(log.find("bunny_res4\texit 0"), std::string::npos) << log;
