@@ -177,27 +177,13 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   // row), so that with the interrupt a PE behind a hit finds it already reported.
   const double margin = cameraOutlineMargin(view);
   const int pes = grid.peCount();
-  const glm::vec3 eye = glm::vec3(glm::inverse(view.world_to_camera)[3]);
-  auto& order = scratch.near_first;
-  order.resize(pes);
-  parallelFor(int(0), int(pes), [&](int pe) {
-    float distance = 0.0f;
-    if (near_first) {
-      glm::vec3 lo, hi;
-      grid.voxelBoxOfPe(pe, lo, hi);
-      distance = glm::length(0.5f * (lo + hi) - eye);
-    }
-    order[pe] = {distance, pe};
-  });
-  if (near_first) std::sort(order.begin(), order.end());
   thread_runs.resize(parallelSliceCount());
   parallelSlices(int(thread_runs.size()), [&](int me, int count) {
     std::vector<TileRun>& runs = thread_runs[me];
     runs.clear();
     std::vector<glm::dvec2> hull;
-    const auto [k_begin, k_end] = sliceRange(size_t(pes), me, count);
-    for (int k = int(k_begin); k < int(k_end); ++k) {
-      const int pe = order[k].second;
+    const auto [pe_begin, pe_end] = sliceRange(size_t(pes), me, count);
+    for (int pe = int(pe_begin); pe < int(pe_end); ++pe) {
       glm::vec3 lo, hi;
       grid.voxelBoxOfPe(pe, lo, hi);
       glm::dvec2 corners[8];
@@ -242,6 +228,34 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
       }
     }
   });
+  // The PEs that reach a tile, each with its runs (consecutive: the slices hold increasing
+  // PEs and each PE's runs in increasing tile rows). With near_first, nearest the eye first
+  // (ties by PE), so that with the interrupt a PE behind a hit finds it already reported;
+  // only the PEs in view are sorted (a scene of scattered models has most of them behind
+  // or beside the camera).
+  auto& order = scratch.near_first;
+  auto& pe_runs = scratch.pe_runs;
+  order.clear();
+  pe_runs.clear();
+  for (const std::vector<TileRun>& runs : thread_runs)
+    for (size_t i = 0; i < runs.size();) {
+      size_t j = i + 1;
+      while (j < runs.size() && runs[j].pe == runs[i].pe) ++j;
+      order.push_back({0.0f, int(pe_runs.size())});
+      pe_runs.push_back({&runs[i], &runs[j - 1] + 1});
+      i = j;
+    }
+  if (near_first) {
+    const glm::vec3 eye = glm::vec3(glm::inverse(view.world_to_camera)[3]);
+    parallelFor(size_t(0), order.size(), [&](size_t k) {
+      glm::vec3 lo, hi;
+      grid.voxelBoxOfPe(pe_runs[k].first->pe, lo, hi);
+      order[k].first = glm::length(0.5f * (lo + hi) - eye);
+    });
+    // Ties in distance by PE, as a sort of (distance, PE) pairs: the slot k of pe_runs
+    // increases with the PE.
+    std::sort(order.begin(), order.end());
+  }
   // Tasks in tile-row order (PE order within a row): consecutive work-groups read
   // neighbouring rays, and phase 2 updates one band of the image at a time.
   row_start.assign(tiles_y + 1, 0);
@@ -249,8 +263,9 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
     for (const TileRun& r : runs) ++row_start[r.ty + 1];
   for (int ty = 0; ty < tiles_y; ++ty) row_start[ty + 1] += row_start[ty];
   sorted.resize(row_start[tiles_y]);
-  for (const std::vector<TileRun>& runs : thread_runs)
-    for (const TileRun& r : runs) sorted[row_start[r.ty]++] = r;
+  for (const auto& [distance, slot] : order)
+    for (const TileRun* r = pe_runs[slot].first; r != pe_runs[slot].second; ++r)
+      sorted[row_start[r->ty]++] = *r;
   bundles.clearTasks();
   for (const TileRun& r : sorted)
     bundles.addRange(r.pe, (r.ty * tiles_x + r.tx0) * GR_PACKET_LANES,

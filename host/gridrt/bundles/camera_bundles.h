@@ -25,8 +25,10 @@ struct CameraBundleScratch {
   std::vector<std::vector<TileRun>> thread_runs;  // each thread's runs
   std::vector<size_t> row_start;                  // counting sort by tile row
   std::vector<TileRun> sorted;
-  std::vector<std::pair<float, int>> near_first;  // (distance to the eye, PE), PE order
-  int layout_width = 0, layout_height = 0;        // the window RayBundles::ray_of is for
+  // (distance to the eye, slot in pe_runs) of the PEs in view, nearest first when asked
+  std::vector<std::pair<float, int>> near_first;
+  std::vector<std::pair<const TileRun*, const TileRun*>> pe_runs;  // each such PE's runs
+  int layout_width = 0, layout_height = 0;  // the window RayBundles::ray_of is for
 };
 
 // How far (in pixels) a voxel's projected outline is grown on every side, so that every
