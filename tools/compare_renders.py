@@ -13,8 +13,12 @@ import math
 import os
 import sys
 
-import numpy as np
-import OpenImageIO as oiio
+try:
+    import numpy as np
+    import OpenImageIO as oiio
+except ImportError as missing:  # one line, not a traceback, when run outside .venv
+    sys.exit(f"{os.path.basename(sys.argv[0])}: the Python package '{missing.name}' is missing: "
+             f"run tools/setup_python.sh, then .venv/bin/python {sys.argv[0]} ...")
 
 
 # Extensions whose pixels are 8-bit sRGB codes; .exr/.hdr/.tif hold linear values.

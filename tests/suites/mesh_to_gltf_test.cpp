@@ -3,6 +3,7 @@
 // negative OBJ indices). Skipped when python3 is not installed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -124,6 +125,26 @@ TEST(Tools, HelpExitsZero) {
     EXPECT_EQ(r.exit_code, 0) << argv[1] << ": " << r.err;
     EXPECT_NE(r.out.find("usage: "), std::string::npos) << r.out;
   }
+}
+
+// A tool that needs numpy and OpenImageIO (.venv) run by a Python without them says so in
+// one line (exit 1) instead of a traceback. The missing package is simulated by a module
+// that fails to import, first on the path.
+TEST(Tools, AMissingPythonPackageIsOneLine) {
+  if (!havePython()) GTEST_SKIP() << "python3 is not installed";
+  const std::string shadow = gridrt::test::freshDir("missing_numpy");
+  std::ofstream(shadow + "/numpy.py")
+      << "raise ModuleNotFoundError(\"No module named 'numpy'\", name='numpy')\n";
+  setenv("PYTHONPATH", shadow.c_str(), 1);
+  for (const char* tool :
+       {"tools/heatmap.py", "tools/compare_renders.py", "tools/accuracy_sweep.py"}) {
+    auto r = runCommand({"python3", sourcePath(tool), "--help"});
+    EXPECT_EQ(r.exit_code, 1) << tool << ": " << r.err;
+    EXPECT_NE(r.err.find("the Python package 'numpy' is missing"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("Traceback"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  unsetenv("PYTHONPATH");
 }
 
 }  // namespace
