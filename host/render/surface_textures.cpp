@@ -54,6 +54,12 @@ glm::vec3 SurfaceTextures::barycentrics(int tri, const glm::vec3& p) const {
   return glm::vec3(1.0f - b1 - b2, b1, b2);
 }
 
+glm::vec4 SurfaceTextures::vertexColour(int tri, const glm::vec3& b) const {
+  if (scene_.colors.empty()) return glm::vec4(1.0f);
+  const size_t v = 3 * size_t(tri);
+  return b.x * scene_.colors[v] + b.y * scene_.colors[v + 1] + b.z * scene_.colors[v + 2];
+}
+
 glm::vec4 SurfaceTextures::lookup(const TextureSlot& slot, bool colour, int tri, const glm::vec3& b,
                                   float footprint_log2) const {
   const glm::vec4 none(1.0f);
@@ -127,12 +133,7 @@ MaterialSample SurfaceTextures::at(int tri, const glm::vec3& p, float footprint,
   const Material& m = scene_.materials[size_t(scene_.material_of[size_t(tri)])];
   MaterialSample s{m.base_color, m.metallic, m.roughness, m.emissive, 1.0f};
   const glm::vec3 b = barycentrics(tri, p);
-  if (!scene_.colors.empty()) {
-    const size_t v = 3 * size_t(tri);
-    const glm::vec4 c =
-        b.x * scene_.colors[v] + b.y * scene_.colors[v + 1] + b.z * scene_.colors[v + 2];
-    s.base_color *= glm::vec3(c);
-  }
+  s.base_color *= glm::vec3(vertexColour(tri, b));
   if (!m.textured()) return s;
   const float cosine = std::fabs(cos_theta);
   const float footprint_log2 =
@@ -154,10 +155,7 @@ float SurfaceTextures::alphaAt(int tri, const glm::vec3& p) const {
   float alpha = m.base_alpha;
   if (!varies(scene_.material_of[size_t(tri)])) return alpha;
   const glm::vec3 b = barycentrics(tri, p);
-  if (!scene_.colors.empty()) {
-    const size_t v = 3 * size_t(tri);
-    alpha *= b.x * scene_.colors[v].a + b.y * scene_.colors[v + 1].a + b.z * scene_.colors[v + 2].a;
-  }
+  alpha *= vertexColour(tri, b).a;
   if (m.base_color_texture.used()) alpha *= lookup(m.base_color_texture, true, tri, b, -INFINITY).a;
   return alpha;
 }

@@ -68,6 +68,8 @@ class SurfaceTextures {
     float d11, d12, d22, det;
     float uv_density[2];  // 0.5 log2(uv area / world area) per TEXCOORD set
   };
+  // COLOR_0 at barycentrics b of `tri`; white when the scene has no vertex colours.
+  glm::vec4 vertexColour(int tri, const glm::vec3& b) const;
   glm::vec4 lookup(const TextureSlot& slot, bool colour, int tri, const glm::vec3& b,
                    float footprint_log2) const;
   // The world tangent and the bitangent's sign at barycentrics b of `tri` (normal n, the
