@@ -18,8 +18,8 @@ float SeeThroughHits::coverage(const GrRay& ray, const GrHit& hit) const {
   const glm::vec3 p(ray.ox + hit.t * ray.dx, ray.oy + hit.t * ray.dy, ray.oz + hit.t * ray.dz);
   const float alpha = textures_.alphaAt(hit.prim, p);
   if (m.alpha_mode == AlphaMode::Mask) return alpha >= m.alpha_cutoff ? 1.0f : 0.0f;
-  return std::clamp(alpha, 0.0f, 1.0f);  // NaN-free: clamp of a NaN alpha is not needed,
-                                         // factors and texels are finite
+  // A share of the light even where a file's factor lies outside [0, 1].
+  return std::clamp(alpha, 0.0f, 1.0f);
 }
 
 size_t SeeThroughHits::passHoles(const std::vector<GrRay>& rays, std::vector<GrHit>& hits,
@@ -30,15 +30,15 @@ size_t SeeThroughHits::passHoles(const std::vector<GrRay>& rays, std::vector<GrH
   for (size_t i = 0; i < rays.size(); ++i) pending_.push_back(i);
   while (!pending_.empty()) {
     // The rays whose hit is a hole go on from it.
-    std::vector<char> hole(pending_.size());
+    hole_.resize(pending_.size());
     parallelFor(0LL, (long long)(pending_.size()), [&](long long k) {
       const GrHit& hit = hits[pending_[k]];
-      hole[k] = hit.prim >= 0 && coverage(rays[pending_[k]], hit) == 0.0f;
+      hole_[k] = hit.prim >= 0 && coverage(rays[pending_[k]], hit) == 0.0f;
     });
     size_t kept = 0;
     onward_rays_.clear();
     for (size_t k = 0; k < pending_.size(); ++k) {
-      if (!hole[k]) continue;
+      if (!hole_[k]) continue;
       GrRay onward = rays[pending_[k]];
       onward.tmin = hits[pending_[k]].t;
       onward_rays_.push_back(onward);

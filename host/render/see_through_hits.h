@@ -54,6 +54,7 @@ class SeeThroughHits {
   bool active_ = false;
   // Scratch of the rounds, kept from call to call.
   std::vector<size_t> pending_;
+  std::vector<char> hole_;  // per pending ray: its hit is a hole
   std::vector<GrRay> onward_rays_;
   std::vector<GrHit> onward_hits_;
 };
