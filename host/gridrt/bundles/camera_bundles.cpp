@@ -173,8 +173,6 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   // Per PE and tile row, the run of tiles whose pixel centres may see the voxel: the
   // projected box's extent in the row band, grown on every side by cameraOutlineMargin
   // against the rounding of the rays (camera_bundles.h).
-  // With near_first, PEs nearest the eye first (their tasks come first in every tile
-  // row), so that with the interrupt a PE behind a hit finds it already reported.
   const double margin = cameraOutlineMargin(view);
   const int pes = grid.peCount();
   thread_runs.resize(parallelSliceCount());
