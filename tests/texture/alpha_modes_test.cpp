@@ -49,7 +49,8 @@ bool solidAt(double x, double y) {
 }
 
 // The scene: quad (triangles 0, 1, material 0) over the floor (triangles 2, 3, material 1).
-// `quad_material` and `light` are their JSON; `with_quad` false leaves the quad out.
+// `quad_material`: the quad's material JSON; `light_rotation`: more members of the light's
+// node ("" points it straight down); `png`: the quad's texture (none when empty).
 std::string sceneDocument(const std::string& quad_material, const std::string& light_rotation,
                           const std::vector<unsigned char>& png) {
   test::GltfDocumentBuilder doc;
