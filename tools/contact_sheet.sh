@@ -38,7 +38,7 @@ while IFS= read -r model; do
   args+=("$renders/$name.png" --ch R,G,B --cut "0,0,$((size - 1)),$((size + 15))")
   [ -f "$font" ] && args+=(--text:x=4:y=$((size + 12)):size=14:font=$font "$name")
 done < <(find "$models" -maxdepth 2 \( -name '*.gltf' -o -name '*.glb' \) | sort)
-count=$(( ${#args[@]} > 0 ? $(wc -l < "$log") : 0 ))
+count=$(wc -l < "$log")
 [ "$count" -gt 0 ] || { echo "contact_sheet: no .gltf or .glb under '$models'" >&2; exit 1; }
 rows=$(( (count + columns - 1) / columns ))
 oiiotool "${args[@]}" --mosaic:pad=4 "${columns}x${rows}" -o "$out" || exit 1
