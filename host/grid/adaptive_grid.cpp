@@ -100,7 +100,11 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base,
   Bounds box;
   box.lo = glm::vec3(lo[0], lo[1], lo[2]);
   box.hi = glm::vec3(hi[0], hi[1], hi[2]);
-  const glm::ivec3 want = autoGridResolution(box, ids.size(), density);
+  glm::ivec3 want = autoGridResolution(box, ids.size(), density);
+  for (int a = 0; a < 3; ++a) {  // cells of at least kMinCellMargins margins
+    const double fit = (double(hi[a]) - lo[a]) / (kMinCellMargins * m);
+    if (fit < want[a]) want[a] = std::max(1, int(fit));
+  }
   std::vector<float> planes[3];
   for (int a = 0; a < 3; ++a) planes[a] = axisPlanes(lo[a], hi[a], want[a]);
   const int r[3] = {int(planes[0].size()) - 1, int(planes[1].size()) - 1,

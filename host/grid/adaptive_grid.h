@@ -34,6 +34,12 @@ static_assert(GridSettings{}.max_leaf_triangles == kMaxLeafTriangles, "one defau
 constexpr int kMergeMaxTriangles = 8;
 // Levels of grids below the top grid at most.
 constexpr int kMaxAdaptiveDepth = 3;
+// A grid below a cell has no cell narrower than this many grid margins on any axis. Every
+// leaf lists the triangles within a margin of its box, so once cells near the margin a
+// finer grid no longer thins its leaves, it only adds PEs (the bunny on a floor 1000 times
+// its size, margin 3 mm: its 8 mm cells held 112 triangles each over 13,892 PEs; with
+// cells of 4 margins or more, 141 over 1,750, and its camera rays trace in half the time).
+constexpr double kMinCellMargins = 4.0;
 
 // Builds the adaptive structure over `triangles` (global order); settings as for
 // buildUniformGrid (automatic resolution for the top grid). Runs on all cores.

@@ -123,6 +123,27 @@ TEST(AdaptiveGrid, LeavesDoNotOverlap) {
   EXPECT_EQ(overlaps, 0u);
 }
 
+// A grid below a cell never splits an axis into cells narrower than kMinCellMargins grid
+// margins: on a floor 10,000 times the model (margin 0.03 around a model 0.15 wide) the
+// model's cell is still refined, but not into cells the margin would fill (without the
+// limit 12 of its 28 split axes are).
+TEST(AdaptiveGrid, NoGridBelowACellSplitsItFinerThanItsMargin) {
+  const Built b = build(10000.0f, 16);
+  const UniformGrid& g = b.grid;
+  ASSERT_GE(g.adaptive.depth, 1);
+  int split_axes = 0, too_fine = 0;
+  for (const GridNode& n : g.adaptive.nodes)
+    for (int a = 0; a < 3; ++a) {
+      if (n.dims[a] == 1) continue;
+      ++split_axes;
+      const double extent = double(g.adaptive.planes[n.plane_begin[a] + n.dims[a]]) -
+                            double(g.adaptive.planes[n.plane_begin[a]]);
+      too_fine += n.dims[a] * kMinCellMargins * g.margin > extent;
+    }
+  EXPECT_GT(split_axes, 0);
+  EXPECT_EQ(too_fine, 0) << "of " << split_axes << " split axes, margin " << g.margin;
+}
+
 // Rays from random points of the box in random directions, some along the axes: at 64
 // distances along each ray, a point inside a leaf (away from its faces by the grid's
 // margin) lies in an entry of that leaf, and every entry's leaf, grown by the margin,
