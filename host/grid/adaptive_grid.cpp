@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "parallel_loops.h"
+#include "pe_hulls.h"
 #include "prepared_triangles.h"
 #include "triangle_box_overlap.h"
 
@@ -371,6 +372,7 @@ UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& setting
   });
   trees = {};
   grid.info.pe_count = grid.peCount();
+  grid.pe_hull = peHulls(grid);
   return grid;
 }
 

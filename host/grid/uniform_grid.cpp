@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "parallel_loops.h"
+#include "pe_hulls.h"
 #include "prepared_triangles.h"
 #include "triangle_box_overlap.h"
 
@@ -38,9 +39,16 @@ void axisRange(double lo, double hi, double gmin, double cell, double m, int n, 
 size_t UniformGrid::memoryBytes() const {
   return pe_of_voxel.size() * sizeof(int) + voxel_of_pe.size() * sizeof(int) +
          pe_tri_begin.size() * sizeof(int) + pe_triangles.size() * sizeof(GrTriangle) +
-         pe_box.size() * sizeof(float) + adaptive.top.size() * sizeof(int) +
+         (pe_box.size() + pe_hull.size()) * sizeof(float) + adaptive.top.size() * sizeof(int) +
          adaptive.nodes.size() * sizeof(GridNode) + adaptive.cells.size() * sizeof(int) +
          adaptive.planes.size() * sizeof(float);
+}
+
+void UniformGrid::hullOfPe(int pe, glm::vec3& lo, glm::vec3& hi) const {
+  if (pe_hull.empty()) return voxelBoxOfPe(pe, lo, hi);
+  const float* b = &pe_hull[size_t(pe) * 6];
+  lo = glm::vec3(b[0], b[1], b[2]);
+  hi = glm::vec3(b[3], b[4], b[5]);
 }
 
 void UniformGrid::voxelBoxOfPe(int pe, glm::vec3& lo, glm::vec3& hi) const {
@@ -167,6 +175,7 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
     }
   }
   grid.pe_box = std::move(boxes);
+  grid.pe_hull = peHulls(grid);
   return grid;
 }
 

@@ -87,6 +87,9 @@ struct UniformGrid {
   // 3D-DDA's plane arithmetic (min + k * cell, in float), for the adaptive structure its
   // leaf (faces on the planes of the grids above it). The kernels take it from here.
   std::vector<float> pe_box;
+  // Per PE its box cut down to its triangles' bounds grown by the margin (pe_hulls.h), as
+  // pe_box; the ray bundles read it.
+  std::vector<float> pe_hull;
   // The adaptive structure's cells; then pe_of_voxel and voxel_of_pe are empty.
   AdaptiveCells adaptive;
 
@@ -99,6 +102,8 @@ struct UniformGrid {
   // The box of PE `pe`'s voxel with the 3D-DDA's plane arithmetic (min + k * cell, in
   // float), so its faces are bit for bit the planes the traversal uses.
   void voxelBoxOfPe(int pe, glm::vec3& lo, glm::vec3& hi) const;
+  // PE `pe`'s hull (pe_hull; its box where the grid has none).
+  void hullOfPe(int pe, glm::vec3& lo, glm::vec3& hi) const;
 };
 
 // R_i = d_i * cbrt(density * N / V), each at least 1, capped by the limits above.

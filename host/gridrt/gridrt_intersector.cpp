@@ -97,7 +97,7 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
       KernelCall<BundlesKernelArgs>(rt_.program("gridrt_bundles.cl", defines), "gridrt_bundles");
   checkTriangleLayout(grid.pe_triangles, kernel_options);
   pe_tri_begin_.uploadNow(rt_, grid.pe_tri_begin);
-  pe_box_.uploadNow(rt_, grid.pe_box);
+  pe_box_.uploadNow(rt_, grid.pe_hull.empty() ? grid.pe_box : grid.pe_hull);
   pe_triangles_.uploadNow(rt_, grid.pe_triangles);
   std::vector<float> seg_planes;
   computeSegmentCullPlanes(grid.pe_triangles, seg_planes);

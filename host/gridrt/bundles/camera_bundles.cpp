@@ -183,7 +183,7 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
     const auto [pe_begin, pe_end] = sliceRange(size_t(pes), me, count);
     for (int pe = int(pe_begin); pe < int(pe_end); ++pe) {
       glm::vec3 lo, hi;
-      grid.voxelBoxOfPe(pe, lo, hi);
+      grid.hullOfPe(pe, lo, hi);
       glm::dvec2 corners[8];
       const bool whole = projectCorners(view, lo, hi, corners);
       // A box reaching behind the camera plane: the outline of its visible part.
@@ -247,7 +247,7 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
     const glm::vec3 eye = glm::vec3(glm::inverse(view.world_to_camera)[3]);
     parallelFor(size_t(0), order.size(), [&](size_t k) {
       glm::vec3 lo, hi;
-      grid.voxelBoxOfPe(pe_runs[k].first->pe, lo, hi);
+      grid.hullOfPe(pe_runs[k].first->pe, lo, hi);
       order[k].first = glm::length(0.5f * (lo + hi) - eye);
     });
     // Ties in distance by PE, as a sort of (distance, PE) pairs: the slot k of pe_runs

@@ -178,7 +178,7 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
     const auto [pe_begin, pe_end] = sliceRange(size_t(pes), me, count);
     for (int pe = int(pe_begin); pe < int(pe_end); ++pe) {
       glm::vec3 lo, hi;
-      grid.voxelBoxOfPe(pe, lo, hi);
+      grid.hullOfPe(pe, lo, hi);
       lo -= slack;
       hi += slack;
       if (!std::isfinite(slack)) {  // rays that do not end anywhere near the light

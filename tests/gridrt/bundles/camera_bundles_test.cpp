@@ -53,7 +53,11 @@ UniformGrid filledGrid(const glm::vec3& shift, glm::ivec3 dims) {
   GridSettings s;
   s.automatic = false;
   s.dims = dims;
-  return buildUniformGrid(tris, b, s);
+  UniformGrid grid = buildUniformGrid(tris, b, s);
+  // The bundles see the PEs' hulls, here cut down to the small triangles; the views aim
+  // where whole boxes meet, so the hulls are the boxes (the outline code is the same).
+  grid.pe_hull = grid.pe_box;
+  return grid;
 }
 
 struct Coverage {
@@ -101,7 +105,7 @@ Coverage checkRandomViews(float shift_scale, uint32_t seed) {
         const int r = (y - window.y0) * window.width() + (x - window.x0);
         for (int pe = 0; pe < grid.peCount(); ++pe) {
           glm::vec3 lo, hi;
-          grid.voxelBoxOfPe(pe, lo, hi);
+          grid.hullOfPe(pe, lo, hi);  // the box the bundle kernel's slab test reads
           if (!slabPierces(ray, lo, hi)) continue;
           ++c.pierced;
           if (!received.count({pe, r})) {
