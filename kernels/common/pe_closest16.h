@@ -179,6 +179,11 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
       todo &= ~(uint)gr_lane_bits16(miss);
     }
     if (seg_cull) todo &= ~(uint)gr_segment_culled16(seg, seg_planes, seg_stride, chunk);
+    /* The triangles left are fetched before the first is tested: on a scene larger than
+     * the cache a PE's triangles are cold, and the first load of each was the kernel's
+     * largest stall (perf, a row of 16 bunnies: 30 % of the kernel's samples). */
+    for (uint ahead = todo; ahead; ahead &= ahead - 1u)
+      __builtin_prefetch(tris + chunk + 31 - clz(ahead & (0u - ahead)));
     while (todo) {
       const int i = chunk + 31 - clz(todo & (0u - todo));
       todo &= todo - 1u;
