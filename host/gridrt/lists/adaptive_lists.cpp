@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "dda_packet.h"
 #include "grid_dda.h"
 #include "parallel_loops.h"
 
@@ -24,6 +25,18 @@ struct Walk {
       return;
     }
     out.push_back({pe, t_enter, t_exit});
+  }
+
+  // The walk of `ray` appending to `out`, with gr_dda_begin's steps and inverse directions
+  // (a subnormal direction component walks as 0).
+  static Walk of(const UniformGrid& grid, const GrRay& ray, std::vector<ListEntry>& out) {
+    Walk w{grid, out, out.size(), {ray.ox, ray.oy, ray.oz}, {ray.dx, ray.dy, ray.dz}, {}, {}};
+    for (int a = 0; a < 3; ++a) {
+      const float d = w.d[a];
+      w.step[a] = d >= GR_FLT_MIN ? 1 : (d <= -GR_FLT_MIN ? -1 : 0);
+      w.inv[a] = w.step[a] != 0 ? 1.0f / d : 0.0f;
+    }
+    return w;
   }
 
   void cell(int code, float t_enter, float t_exit) {
@@ -79,33 +92,46 @@ void adaptiveList(const UniformGrid& grid, const GrRay& ray, std::vector<ListEnt
   GrDda s;
   if (!gr_dda_begin(&g, ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, ray.tmin, ray.tmax, &s))
     return;
-  Walk w{grid,
-         out,
-         out.size(),
-         {s.ox, s.oy, s.oz},
-         {ray.dx, ray.dy, ray.dz},
-         {s.idx, s.idy, s.idz},
-         {s.sx, s.sy, s.sz}};
+  Walk w = Walk::of(grid, ray, out);
   do {
     w.cell(grid.adaptive.top[s.ix + g.nx * (s.iy + g.ny * s.iz)], s.t_enter, s.t_exit);
   } while (gr_dda_step(&g, &s));
 }
 
+// The top grid is walked a packet of rays at a time (dda_packet.h, the scalar walk's
+// distances bit for bit), keeping the cells with a leaf or a grid below them; each ray's
+// cells are then expanded as adaptiveList's walk does.
 void computeAdaptiveLists(const UniformGrid& grid, const GrRay* rays, size_t count,
                           TraversalLists& lists) {
   const size_t chunks = (count + kListChunkRays - 1) / kListChunkRays;
   if (lists.scratch.size() < chunks) lists.scratch.resize(chunks);
   lists.begin.resize(count + 1);
   lists.begin[0] = 0;
+  const GrGridInfo& g = grid.info;
+  const int stride = g.nx + g.ny + g.nz;
+  const int lanes = ddaPacketLanes();
+  lists.packet_scratch.resize(threadSlotCount());
+  for (auto& s : lists.packet_scratch) s.resize(lanes * size_t(stride));
   parallelForDynamic(0LL, (long long)(chunks), 1LL, [&](long long chunk) {
     auto& out = lists.scratch[chunk];
     out.clear();
     const size_t first = size_t(chunk) * kListChunkRays;
     const size_t last = std::min(count, first + kListChunkRays);
-    for (size_t r = first; r < last; ++r) {
-      const size_t before = out.size();
-      adaptiveList(grid, rays[r], out);
-      lists.begin[r + 1] = int(out.size() - before);  // a count for now
+    const ListEntry* cells = lists.packet_scratch[currentThreadSlot()].data();
+    int found[kDdaPacketMaxLanes];
+    for (size_t r = first; r < last; r += lanes) {
+      const int n = int(std::min<size_t>(lanes, last - r));
+      ddaPacket(g, grid.adaptive.top.data(), rays + r, n,
+                lists.packet_scratch[currentThreadSlot()].data(), stride, found);
+      for (int k = 0; k < n; ++k) {
+        const size_t before = out.size();
+        if (found[k] > 0) {
+          Walk w = Walk::of(grid, rays[r + k], out);
+          const ListEntry* cell = cells + size_t(k) * stride;
+          for (int c = 0; c < found[k]; ++c) w.cell(cell[c].pe, cell[c].t_enter, cell[c].t_exit);
+        }
+        lists.begin[r + k + 1] = int(out.size() - before);  // a count for now
+      }
     }
   });
   gatherChunkLists(lists, count, chunks);

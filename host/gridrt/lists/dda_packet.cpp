@@ -162,7 +162,7 @@ struct PacketWalk {
       const VI pe = hn::IfThenElse(
           active_i, hn::GatherIndex(di, pe_of_voxel, hn::IfThenElseZero(active_i, voxel)),
           hn::Set(di, -1));
-      const auto keep = hn::And(active_i, pe > hn::Set(di, -1));
+      const auto keep = hn::And(active_i, pe != hn::Set(di, -1));
       // Every lane writes (pe, t_enter, t_exit) to its next free slot, inside its stride (a
       // ray keeps fewer voxels than that), with one scatter per field instead of a loop
       // over the kept lanes; only the kept ones count it, the others' slot is overwritten
@@ -216,7 +216,7 @@ void walkOneByOne(const GrGridInfo& g, const int* pe_of_voxel, const GrRay* rays
     if (gr_dda_begin(&g, ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, ray.tmin, ray.tmax, &s)) {
       do {
         const int pe = pe_of_voxel[s.ix + g.nx * (s.iy + g.ny * s.iz)];
-        if (pe >= 0) list[found++] = ListEntry{pe, s.t_enter, s.t_exit};
+        if (pe != -1) list[found++] = ListEntry{pe, s.t_enter, s.t_exit};
       } while (gr_dda_step(&g, &s));
     }
     counts[k] = found;

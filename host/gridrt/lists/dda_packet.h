@@ -24,7 +24,8 @@ int ddaPacketLanes();
 bool ddaPacketWidthIsBuilt(int lanes);
 
 // Walks rays[0..count) (count <= ddaPacketLanes()) through grid g and keeps the voxels
-// whose PE (pe_of_voxel, -1 when empty) is not empty: ray k's entries, nearest first, go
+// whose code (pe_of_voxel: -1 when empty, else a PE, or for the adaptive structure's top
+// grid a node below it, AdaptiveCells::top) is not -1: ray k's entries, nearest first, go
 // to out[k * stride ...], their number to counts[k]. stride must be at least
 // nx + ny + nz, more than the voxels one ray can visit, and out must hold
 // ddaPacketLanes() * stride entries.
