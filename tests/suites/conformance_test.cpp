@@ -206,33 +206,35 @@ TEST_F(Conformance, ListPathDiagnosticsAgreeWithTheCameraPathAndTheCounters) {
   const int w = 160, h = 120;
   PinholeView view = PinholeView::of(scene.camera, w, h, PixelWindow{});
   std::vector<GrRay> rays = cameraRays(scene, w, h);
-  {
-    GridRtIntersector hulls(*runtime_, grid, PeInterrupt::Off);
+  struct BothPaths {
     RayDiagnostics list, camera;
     std::vector<GrHit> list_hits, camera_hits;
-    hulls.intersect(rays, HitMode::Closest, list_hits, &list);
-    hulls.intersectPrimary(view, rays, camera_hits, &camera);
-    EXPECT_EQ(test::hitMismatches(camera_hits, list_hits, "camera path with hulls"), 0u);
-    EXPECT_EQ(list.winning_pe, camera.winning_pe);
+  };
+  auto bothPaths = [&](GridRtIntersector& x) {
+    BothPaths p;
+    x.intersect(rays, HitMode::Closest, p.list_hits, &p.list);
+    x.intersectPrimary(view, rays, p.camera_hits, &p.camera);
+    EXPECT_EQ(test::hitMismatches(p.camera_hits, p.list_hits, "list path"), 0u);
+    EXPECT_EQ(p.list.winning_pe, p.camera.winning_pe);
+    return p;
+  };
+  {
+    GridRtIntersector hulls(*runtime_, grid, PeInterrupt::Off);
+    const BothPaths p = bothPaths(hulls);
     size_t fewer = 0;
     for (size_t r = 0; r < rays.size(); ++r) {
-      EXPECT_LE(camera.list_length[r], list.list_length[r]) << "ray " << r;
-      fewer += camera.list_length[r] < list.list_length[r];
+      EXPECT_LE(p.camera.list_length[r], p.list.list_length[r]) << "ray " << r;
+      fewer += p.camera.list_length[r] < p.list.list_length[r];
     }
     EXPECT_GT(fewer, 0u);
   }
   grid.pe_hull = grid.pe_box;
   GridRtIntersector plain(*runtime_, grid, PeInterrupt::Off);
-  RayDiagnostics list, camera;
-  std::vector<GrHit> list_hits, camera_hits;
-  plain.intersect(rays, HitMode::Closest, list_hits, &list);
-  plain.intersectPrimary(view, rays, camera_hits, &camera);
-  EXPECT_EQ(test::hitMismatches(camera_hits, list_hits, "list path"), 0u);
-  EXPECT_EQ(list.list_length, camera.list_length);
-  EXPECT_EQ(list.tests, camera.tests);
-  EXPECT_EQ(list.winning_pe, camera.winning_pe);
+  const BothPaths p = bothPaths(plain);
+  EXPECT_EQ(p.list.list_length, p.camera.list_length);
+  EXPECT_EQ(p.list.tests, p.camera.tests);
   size_t hit_count = 0;
-  for (const GrHit& hit : list_hits) hit_count += hit.prim >= 0;
+  for (const GrHit& hit : p.list_hits) hit_count += hit.prim >= 0;
   EXPECT_GT(hit_count, rays.size() / 10);
 
   // From below the grid's lowest z (voxel index, hence PE order, grows with z) upwards.
