@@ -2,9 +2,7 @@
 
 #include <algorithm>
 
-#include "dda_packet.h"
 #include "grid_dda.h"
-#include "parallel_loops.h"
 
 namespace gridrt {
 
@@ -98,43 +96,17 @@ void adaptiveList(const UniformGrid& grid, const GrRay& ray, std::vector<ListEnt
   } while (gr_dda_step(&g, &s));
 }
 
-// The top grid is walked a packet of rays at a time (dda_packet.h, the scalar walk's
-// distances bit for bit), keeping the cells with a leaf or a grid below them; each ray's
-// cells are then expanded as adaptiveList's walk does.
+// The top grid is walked a packet of rays at a time (computeListsOverCells: the scalar
+// walk's distances bit for bit), keeping the cells with a leaf or a grid below them; each
+// ray's cells are then expanded as adaptiveList's walk does.
 void computeAdaptiveLists(const UniformGrid& grid, const GrRay* rays, size_t count,
                           TraversalLists& lists) {
-  const size_t chunks = (count + kListChunkRays - 1) / kListChunkRays;
-  if (lists.scratch.size() < chunks) lists.scratch.resize(chunks);
-  lists.begin.resize(count + 1);
-  lists.begin[0] = 0;
-  const GrGridInfo& g = grid.info;
-  const int stride = g.nx + g.ny + g.nz;
-  const int lanes = ddaPacketLanes();
-  lists.packet_scratch.resize(threadSlotCount());
-  for (auto& s : lists.packet_scratch) s.resize(lanes * size_t(stride));
-  parallelForDynamic(0LL, (long long)(chunks), 1LL, [&](long long chunk) {
-    auto& out = lists.scratch[chunk];
-    out.clear();
-    const size_t first = size_t(chunk) * kListChunkRays;
-    const size_t last = std::min(count, first + kListChunkRays);
-    const ListEntry* cells = lists.packet_scratch[currentThreadSlot()].data();
-    int found[kDdaPacketMaxLanes];
-    for (size_t r = first; r < last; r += lanes) {
-      const int n = int(std::min<size_t>(lanes, last - r));
-      ddaPacket(g, grid.adaptive.top.data(), rays + r, n,
-                lists.packet_scratch[currentThreadSlot()].data(), stride, found);
-      for (int k = 0; k < n; ++k) {
-        const size_t before = out.size();
-        if (found[k] > 0) {
-          Walk w = Walk::of(grid, rays[r + k], out);
-          const ListEntry* cell = cells + size_t(k) * stride;
-          for (int c = 0; c < found[k]; ++c) w.cell(cell[c].pe, cell[c].t_enter, cell[c].t_exit);
-        }
-        lists.begin[r + k + 1] = int(out.size() - before);  // a count for now
-      }
-    }
-  });
-  gatherChunkLists(lists, count, chunks);
+  computeListsOverCells(
+      grid.info, grid.adaptive.top.data(), rays, count, lists,
+      [&grid](const GrRay& ray, const ListEntry* cells, int n, std::vector<ListEntry>& out) {
+        Walk w = Walk::of(grid, ray, out);
+        for (int c = 0; c < n; ++c) w.cell(cells[c].pe, cells[c].t_enter, cells[c].t_exit);
+      });
 }
 
 }  // namespace gridrt

@@ -9,20 +9,15 @@
 
 namespace gridrt {
 
-void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t count,
-                           TraversalLists& lists) {
-  if (!grid.adaptive.empty()) {
-    computeAdaptiveLists(grid, rays, count, lists);
-    return;
-  }
+void computeListsOverCells(const GrGridInfo& g, const int* codes, const GrRay* rays, size_t count,
+                           TraversalLists& lists, const ExpandCells& expand) {
   // Chunks handed out dynamically (list lengths vary a lot across a batch), each with its
   // own output, copied out in chunk order.
   const size_t chunks = (count + kListChunkRays - 1) / kListChunkRays;
   if (lists.scratch.size() < chunks) lists.scratch.resize(chunks);
   lists.begin.resize(count + 1);
   lists.begin[0] = 0;
-  // Lane-major room for a packet's lists: a ray visits fewer than nx + ny + nz voxels.
-  const GrGridInfo& g = grid.info;
+  // Lane-major room for a packet's cells: a ray visits fewer than nx + ny + nz voxels.
   const int stride = g.nx + g.ny + g.nz;
   const int lanes = ddaPacketLanes();
   lists.packet_scratch.resize(threadSlotCount());
@@ -36,14 +31,28 @@ void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t co
     int found[kDdaPacketMaxLanes];
     for (size_t r = first; r < last; r += lanes) {
       const int n = int(std::min<size_t>(lanes, last - r));
-      ddaPacket(g, grid.pe_of_voxel.data(), rays + r, n, packet, stride, found);
+      ddaPacket(g, codes, rays + r, n, packet, stride, found);
       for (int k = 0; k < n; ++k) {
-        out.insert(out.end(), packet + size_t(k) * stride, packet + size_t(k) * stride + found[k]);
-        lists.begin[r + k + 1] = found[k];  // a count for now
+        const size_t before = out.size();
+        if (found[k] > 0) expand(rays[r + k], packet + size_t(k) * stride, found[k], out);
+        lists.begin[r + k + 1] = int(out.size() - before);  // a count for now
       }
     }
   });
   gatherChunkLists(lists, count, chunks);
+}
+
+void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t count,
+                           TraversalLists& lists) {
+  if (!grid.adaptive.empty()) {
+    computeAdaptiveLists(grid, rays, count, lists);
+    return;
+  }
+  computeListsOverCells(
+      grid.info, grid.pe_of_voxel.data(), rays, count, lists,
+      [](const GrRay&, const ListEntry* cells, int n, std::vector<ListEntry>& out) {
+        out.insert(out.end(), cells, cells + n);
+      });
 }
 
 void gatherChunkLists(TraversalLists& lists, size_t count, size_t chunks) {

@@ -3,6 +3,7 @@
 // kernels/common/grid_dda.h). Stored ray-major: the entries of ray r are
 // entries[begin[r] .. begin[r+1]), and an entry's index is its "slot".
 #pragma once
+#include <functional>
 #include <vector>
 
 #include "gridrt_types.h"
@@ -35,6 +36,16 @@ constexpr size_t kListChunkRays = 2048;
 // lists.begin[r + 1] holds ray r's entry count and lists.scratch[c] chunk c's entries;
 // turns the counts into offsets and copies the chunks, in order, into lists.entries.
 void gatherChunkLists(TraversalLists& lists, size_t count, size_t chunks);
+
+// Appends to `out` a ray's entries made from `cells`, its `count` cells of a grid walk.
+using ExpandCells = std::function<void(const GrRay& ray, const ListEntry* cells, int count,
+                                       std::vector<ListEntry>& out)>;
+
+// Lists made chunk by chunk on all cores: the grid `g` is walked a packet of rays at a time
+// (dda_packet.h), keeping the cells whose code (`codes`, per voxel) is not -1, and each
+// ray's cells go through `expand`.
+void computeListsOverCells(const GrGridInfo& g, const int* codes, const GrRay* rays, size_t count,
+                           TraversalLists& lists, const ExpandCells& expand);
 
 // Fills `lists` for rays[0..count). Runs on all cores.
 void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t count,
