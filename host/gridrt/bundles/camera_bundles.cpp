@@ -13,16 +13,27 @@ namespace {
 
 // The box's corners in continuous pixel coordinates (pixel (i, j)'s centre ray at (i, j)),
 // in double through the exact inverse of the camera's matrix; false when a corner lies at
-// or behind the camera plane (the footprint is unbounded).
+// or behind the camera plane (the footprint is unbounded). The matrix is affine: the
+// corners are its image of `lo` plus its columns scaled by the box's sides, one division
+// each (a few double roundings, far below cameraOutlineMargin).
 bool projectCorners(const PinholeView& v, const glm::vec3& lo, const glm::vec3& hi,
                     glm::dvec2 (&corners)[8]) {
-  const double tan_half = v.tan_half, aspect = v.aspect;
+  const glm::dmat4& m = v.exact_world_to_camera;
+  const glm::dvec3 base(m * glm::dvec4(glm::dvec3(lo), 1.0));
+  const glm::dvec3 side[3] = {glm::dvec3(m[0]) * (double(hi.x) - double(lo.x)),
+                              glm::dvec3(m[1]) * (double(hi.y) - double(lo.y)),
+                              glm::dvec3(m[2]) * (double(hi.z) - double(lo.z))};
+  const double sx = 0.5 * v.width / (double(v.tan_half) * v.aspect);
+  const double sy = 0.5 * v.height / double(v.tan_half);
+  const double cx = 0.5 * v.width - 0.5, cy = 0.5 * v.height - 0.5;
   for (int c = 0; c < 8; ++c) {
-    glm::dvec3 corner(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
-    glm::dvec4 p = v.exact_world_to_camera * glm::dvec4(corner, 1.0);
+    glm::dvec3 p = base;
+    if (c & 1) p += side[0];
+    if (c & 2) p += side[1];
+    if (c & 4) p += side[2];
     if (!(p.z < 0.0)) return false;
-    double x = p.x / (-p.z) / (tan_half * aspect), y = p.y / (-p.z) / tan_half;
-    corners[c] = glm::dvec2((x + 1.0) * 0.5 * v.width - 0.5, (1.0 - y) * 0.5 * v.height - 0.5);
+    const double inv = 1.0 / -p.z;
+    corners[c] = glm::dvec2(cx + p.x * inv * sx, cy - p.y * inv * sy);
   }
   return true;
 }
