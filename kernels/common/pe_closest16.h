@@ -194,7 +194,8 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
       if (seg_cull) mask &= ~(uint)gr_segment_culled16(seg, seg_planes, seg_stride, chunk);
       /* A triangle may straddle two cache lines: both ends are fetched. */
       for (uint ahead = mask; ahead; ahead &= ahead - 1u) {
-        __global const char* at = (__global const char*)(tris + chunk + 31 - clz(ahead & (0u - ahead)));
+        __global const char* at =
+            (__global const char*)(tris + chunk + 31 - clz(ahead & (0u - ahead)));
         __builtin_prefetch(at);
         __builtin_prefetch(at + sizeof(GrTriangle) - 1);
       }
@@ -209,8 +210,8 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
         GrTriangle tri = tris[i];
         ++tested;
         float16 t, u, v;
-        int16 hit = gr_intersect16(r, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z,
-                                   tri.e2x, tri.e2y, tri.e2z, &t, &u, &v);
+        int16 hit = gr_intersect16(r, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z, tri.e2x,
+                                   tri.e2y, tri.e2z, &t, &u, &v);
         /* The in-voxel rule: without it a triangle spanning voxels could win in a PE that
          * comes before the voxel where its hit really lies. */
         hit &= active & (t > tmin) & (t < best_t) & (t >= t_enter) & (t <= t_exit);
