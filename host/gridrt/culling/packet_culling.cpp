@@ -23,24 +23,28 @@ glm::dvec3 upOf(const GrCullFrame& f) { return {f.ux, f.uy, f.uz}; }
 CullBox boxOf(const GrCullFrame& frame, const glm::dvec3& origin, const glm::dvec3 v[3],
               double error_factor) {
   const glm::dvec3 f = forwardOf(frame), r = rightOf(frame), u = upOf(frame);
-  double a[3], b[3], z_min = std::numeric_limits<double>::infinity(), far = 0.0;
+  // One square root (the farthest vertex) and a division a vertex: this runs for every
+  // triangle of every PE whenever the camera moves.
+  double a[3], b[3], z_min = std::numeric_limits<double>::infinity(), far2 = 0.0;
   glm::dvec3 w[3];
   for (int i = 0; i < 3; ++i) {
     w[i] = v[i] - origin;
-    far = std::max(far, glm::length(w[i]));
+    far2 = std::max(far2, glm::dot(w[i], w[i]));
   }
+  const double far = std::sqrt(far2);
   for (int i = 0; i < 3; ++i) {
     const double z = glm::dot(w[i], f);
     if (!(z > kCullMinDepth * far)) return kUnculled;
     z_min = std::min(z_min, z);
-    a[i] = glm::dot(w[i], r) / z;
-    b[i] = glm::dot(w[i], u) / z;
+    const double inv_z = 1.0 / z;  // a double rounding more: nothing beside the margin
+    a[i] = glm::dot(w[i], r) * inv_z;
+    b[i] = glm::dot(w[i], u) * inv_z;
   }
-  const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
-  const double edge =
-      std::max({glm::length(v[1] - v[0]), glm::length(v[2] - v[0]), glm::length(v[2] - v[1])});
+  const glm::dvec3 e1 = v[1] - v[0], e2 = v[2] - v[0], e3 = v[2] - v[1];
+  const glm::dvec3 n = glm::cross(e1, e2);
+  const double edge2 = std::max({glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3)});
   const double incidence = std::abs(glm::dot(n, w[0]));
-  const double kappa = edge * edge * far / incidence;
+  const double kappa = edge2 * far / incidence;
   double spread = 1.0;
   for (int i = 0; i < 3; ++i) spread = std::max(spread, 1.0 + std::abs(a[i]) + std::abs(b[i]));
   const double margin = error_factor * 0x1p-24 * kappa * (far / z_min) * spread * spread;
