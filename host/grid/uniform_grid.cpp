@@ -17,21 +17,20 @@ struct VoxelRef {
   int triangle;
 };
 
-// The range of voxel indices on one axis whose margin-grown cell may touch [lo, hi].
-// The margin can span several cells (a scene collapsed to a point or a plane has cells
-// smaller than the margin), so [lo, hi] is grown by it; one extra cell each side against
-// rounding; the exact test decides. Clamped in double so far-away triangles cannot
-// overflow the int conversion.
-void axisRange(double lo, double hi, double gmin, double cell, double m, int n, int& first,
+// The voxels [first, last] on one axis whose faces `planes` (n + 1 increasing values)
+// grown by m may touch [lo, hi]: widened by a billionth of the grid's mean cell against
+// double rounding (the exact test decides), clamped to the grid.
+void axisRange(const std::vector<double>& planes, double lo, double hi, double m, int& first,
                int& last) {
-  // Voxel i, grown by m, is [gmin + i*cell - m, gmin + (i+1)*cell + m]; it meets [lo, hi]
-  // exactly for (lo - m - gmin)/cell - 1 <= i <= (hi + m - gmin)/cell. Widened by a
-  // billionth of a cell against double rounding; the exact test decides the rest.
   constexpr double kRangeSlack = 1e-9;
-  double a = (lo - m - gmin) / cell - 1.0 - kRangeSlack;
-  double b = (hi + m - gmin) / cell + kRangeSlack;
-  first = int(std::clamp(std::ceil(a), 0.0, double(n - 1)));
-  last = int(std::clamp(std::floor(b), 0.0, double(n - 1)));
+  const int n = int(planes.size()) - 1;
+  const double slack = kRangeSlack * (planes[n] - planes[0]) / n;
+  const double reach_lo = lo - m - slack, reach_hi = hi + m + slack;
+  // First voxel whose upper face reaches lo; last voxel whose lower face is below hi.
+  first = int(std::lower_bound(planes.begin() + 1, planes.end(), reach_lo) - (planes.begin() + 1));
+  last = int(std::upper_bound(planes.begin(), planes.end() - 1, reach_hi) - planes.begin()) - 1;
+  first = std::clamp(first, 0, n - 1);
+  last = std::clamp(last, 0, n - 1);
 }
 
 }  // namespace
@@ -97,12 +96,12 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
     reach.grow(settings.ray_origins.lo);
     reach.grow(settings.ray_origins.hi);
   }
-  const glm::dvec3 far = glm::max(glm::abs(glm::dvec3(reach.lo)), glm::abs(glm::dvec3(reach.hi)));
-  double scale = std::max({far.x, far.y, far.z}) + glm::length(hi - lo);
+  // The longest way a ray takes through the grid (kGridMarginRel, uniform_grid.h).
+  const double way = glm::length(glm::dvec3(reach.hi) - glm::dvec3(reach.lo));
   // A positive floor keeps the cells non-zero even for a scene collapsed to one point.
-  grid.margin = std::max(settings.margin_rel * scale, 1e-30);
-  glm::dvec3 gmin = lo - grid.margin;
-  glm::dvec3 cell = (hi - lo + 2.0 * grid.margin) / glm::dvec3(n);
+  grid.margin = std::max(settings.margin_rel * way, 1e-30);
+  const glm::dvec3 gmin = lo - grid.margin;
+  const glm::dvec3 cell = (hi - lo + 2.0 * grid.margin) / glm::dvec3(n);
   grid.info.minx = float(gmin.x);
   grid.info.miny = float(gmin.y);
   grid.info.minz = float(gmin.z);
@@ -113,10 +112,19 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
   grid.info.ny = n.y;
   grid.info.nz = n.z;
   // From here on the float values are the grid's definition (the DDA uses them).
-  gmin = glm::dvec3(grid.info.minx, grid.info.miny, grid.info.minz);
-  cell = glm::dvec3(grid.info.cellx, grid.info.celly, grid.info.cellz);
   const double m = grid.margin;
   const size_t voxels = size_t(n.x) * n.y * n.z;
+  // The voxels' faces as the 3D-DDA walks them (grid_dda.h: min + k * cell in float). Far
+  // from the origin they lie up to half an ulp of the coordinates off min + k * cell in
+  // double, far more than the margin: a triangle binned against the double planes could
+  // touch a float one from a voxel the walk gives its hits to.
+  std::vector<double> planes[3];
+  const float mins[3] = {grid.info.minx, grid.info.miny, grid.info.minz};
+  const float cells[3] = {grid.info.cellx, grid.info.celly, grid.info.cellz};
+  for (int a = 0; a < 3; ++a) {
+    planes[a].resize(size_t(n[a]) + 1);
+    for (int k = 0; k <= n[a]; ++k) planes[a][k] = double(mins[a] + float(k) * cells[a]);
+  }
 
   std::vector<std::vector<VoxelRef>> refs(parallelSliceCount());
   parallelSlices(int(refs.size()), [&](int me, int count) {
@@ -128,8 +136,7 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
       glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2]));
       glm::dvec3 thi = glm::max(v[0], glm::max(v[1], v[2]));
       int first[3], last[3];
-      for (int a = 0; a < 3; ++a)
-        axisRange(tlo[a], thi[a], gmin[a], cell[a], m, n[a], first[a], last[a]);
+      for (int a = 0; a < 3; ++a) axisRange(planes[a], tlo[a], thi[a], m, first[a], last[a]);
       // A triangle whose bounding box meets one grown voxel only lies inside it (the
       // grown voxels cover the grid, which contains every triangle): no test needed.
       if (first[0] == last[0] && first[1] == last[1] && first[2] == last[2]) {
@@ -139,8 +146,9 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
       for (int z = first[2]; z <= last[2]; ++z)
         for (int y = first[1]; y <= last[1]; ++y)
           for (int x = first[0]; x <= last[0]; ++x) {
-            glm::dvec3 cell_lo = gmin + glm::dvec3(x, y, z) * cell - m;
-            glm::dvec3 cell_hi = gmin + glm::dvec3(x + 1, y + 1, z + 1) * cell + m;
+            const glm::dvec3 cell_lo = glm::dvec3(planes[0][x], planes[1][y], planes[2][z]) - m;
+            const glm::dvec3 cell_hi =
+                glm::dvec3(planes[0][x + 1], planes[1][y + 1], planes[2][z + 1]) + m;
             if (triangleOverlapsBox(cell_lo, cell_hi, v[0], v[1], v[2]))
               mine.push_back({x + n.x * (y + n.y * z), int(t)});
           }

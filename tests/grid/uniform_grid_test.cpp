@@ -497,8 +497,8 @@ TEST(UniformGrid, TriangleWithinTheMarginOfANeighbouringVoxelIsListedThere) {
   UniformGrid g =
       twoVoxels({{1.5f, 0.5f, 0.5f}, {1.6f, 0.5f, 0.5f}, {1.5f, 0.6f, 0.5f}}, kGridMarginRel, tris);
   const double m = g.margin;
-  // margin_rel * (largest |coordinate| + diagonal) = 1e-5 * (2 + sqrt(6))
-  EXPECT_NEAR(m, kGridMarginRel * (2.0 + std::sqrt(6.0)), 1e-12);
+  // margin_rel * the box's diagonal = 1e-5 * sqrt(6): the longest way through the grid
+  EXPECT_NEAR(m, kGridMarginRel * std::sqrt(6.0), 1e-12);
   const double plane = double(g.info.minx) + double(g.info.cellx);
   ASSERT_NEAR(plane, 1.0, 1e-6);
   auto triangleAt = [&](double x) {

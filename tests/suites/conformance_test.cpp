@@ -428,6 +428,24 @@ TEST_F(Conformance, RandomRaysInsideAndOutsideTheGridMatchBrute) {
   expectAllAgree(tris, b, randomRays(b, 20000, 7), standardGrids(b, tris.size()), "random");
 }
 
+// The same model moved far from the world origin: the margin's scale is the longest way of
+// a ray through the grid, not the coordinates (kGridMarginRel), so at x = 10^4 the margin
+// stays 1e-5 of the model's diagonal (2e-6) while positions round by ulps of 1e-3. The
+// same random rays (inside, outside, axis-parallel) must still find every hit.
+TEST_F(Conformance, RandomRaysAroundAModelFarFromTheOriginMatchBrute) {
+  for (float offset : {1e2f, 1e3f, 1e4f}) {
+    Scene scene = loadGltfFile(test::modelScene("bunny_res4.glb"));
+    for (glm::vec3& p : scene.positions) p += glm::vec3(offset, -0.5f * offset, 0.25f * offset);
+    auto tris = prepareTriangles(scene);
+    Bounds b = sceneBounds(scene);
+    const std::vector<GridSettings> grids = standardGrids(b, tris.size());
+    EXPECT_LT(buildUniformGrid(tris, b, grids.front()).margin,
+              1e-5 * glm::length(b.extent()) * 1.01)
+        << offset;
+    expectAllAgree(tris, b, randomRays(b, 20000, 7), grids, "far " + std::to_string(int(offset)));
+  }
+}
+
 TEST_F(Conformance, RandomRaysInTheClosedDefaultBoxMatchBrute) {
   Scene scene = makeDefaultScene();
   auto tris = prepareTriangles(scene);
