@@ -9,6 +9,7 @@
 #include <memory>
 #include <random>
 
+#include "adaptive_grid.h"
 #include "brute_intersector.h"
 #include "camera_rays.h"
 #include "cl_runtime.h"
@@ -442,7 +443,20 @@ TEST_F(Conformance, RandomRaysAroundAModelFarFromTheOriginMatchBrute) {
     EXPECT_LT(buildUniformGrid(tris, b, grids.front()).margin,
               1e-5 * glm::length(b.extent()) * 1.01)
         << offset;
-    expectAllAgree(tris, b, randomRays(b, 20000, 7), grids, "far " + std::to_string(int(offset)));
+    const std::vector<GrRay> rays = randomRays(b, 20000, 7);
+    expectAllAgree(tris, b, rays, grids, "far " + std::to_string(int(offset)));
+    // The adaptive structure, two levels deep: its sub-grids' float planes are walked too.
+    GridSettings adaptive;
+    adaptive.structure = GridStructure::Adaptive;
+    adaptive.max_leaf_triangles = 16;
+    BruteIntersector brute(*runtime_, tris);
+    const UniformGrid grid = buildGrid(tris, b, adaptive);
+    ASSERT_GE(grid.adaptive.depth, 1) << offset;
+    GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
+    std::vector<GrHit> want, got;
+    brute.intersect(rays, HitMode::Closest, want, nullptr);
+    gridrt.intersect(rays, HitMode::Closest, got, nullptr);
+    EXPECT_EQ(test::hitMismatches(want, got, "far adaptive " + std::to_string(int(offset))), 0u);
   }
 }
 
