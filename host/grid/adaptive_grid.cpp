@@ -69,27 +69,6 @@ std::vector<float> axisPlanes(float lo, float hi, int r) {
   return p;
 }
 
-// The cells [first, last] on one axis whose margin-grown extent [p[i] - m, p[i+1] + m]
-// may meet [lo, hi]: widened by kRangeSlack of a cell against the rounding of the exact
-// test's own arithmetic, which decides; clamped to the grid.
-void cellRange(const std::vector<float>& p, double lo, double hi, double m, int& first, int& last) {
-  // A billionth of the grid's mean cell: far above double rounding, far below any cell.
-  constexpr double kRangeSlack = 1e-9;
-  const int r = int(p.size()) - 1;
-  const double slack = kRangeSlack * (double(p[r]) - double(p[0])) / r;
-  const double reach_lo = lo - m - slack, reach_hi = hi + m + slack;
-  // First cell whose upper face reaches lo; last cell whose lower face is below hi.
-  first = int(std::lower_bound(p.begin() + 1, p.end(), reach_lo,
-                               [](float a, double b) { return double(a) < b; }) -
-              (p.begin() + 1));
-  last = int(std::upper_bound(p.begin(), p.end() - 1, reach_hi,
-                              [](double b, float a) { return b < double(a); }) -
-             p.begin()) -
-         1;
-  first = std::clamp(first, 0, r - 1);
-  last = std::clamp(last, 0, r - 1);
-}
-
 // A grid over the box [lo, hi] for the triangles at positions `ids` of `base` (increasing,
 // all overlapping the box grown by m), its cells' leaves and grids below them appended to
 // `tree` in cell order (the grids below built in parallel, then appended in that order, so
@@ -142,7 +121,7 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base,
       const glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2]));
       const glm::dvec3 thi = glm::max(v[0], glm::max(v[1], v[2]));
       int first[3], last[3];
-      for (int a = 0; a < 3; ++a) cellRange(planes[a], tlo[a], thi[a], m, first[a], last[a]);
+      for (int a = 0; a < 3; ++a) cellRangeOnAxis(planes[a], tlo[a], thi[a], m, first[a], last[a]);
       // A triangle whose bounding box meets one grown cell only: its part inside this box
       // grown by m (where it overlaps, or it would not be here) lies in that cell, since
       // the grown cells cover the grown box. No test needed, as in the uniform grid.

@@ -112,6 +112,13 @@ struct UniformGrid {
   void hullOfPe(int pe, glm::vec3& lo, glm::vec3& hi) const;
 };
 
+// The cells [first, last] on one axis whose extent between `planes` (cell i from planes[i]
+// to planes[i + 1], increasing) grown by m may meet [lo, hi]: widened by a billionth of
+// the mean cell against double rounding (the exact overlap test decides), clamped to the
+// cells. Used by both grids' binning: their cells' faces are the planes the walks use.
+void cellRangeOnAxis(const std::vector<float>& planes, double lo, double hi, double m, int& first,
+                     int& last);
+
 // R_i = d_i * cbrt(density * N / V), each at least 1, capped by the limits above.
 // Flat or empty extents are floored at 1e-3 of the largest so V is never 0.
 glm::ivec3 autoGridResolution(const Bounds& bounds, size_t triangle_count, float density);
