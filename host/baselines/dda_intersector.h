@@ -13,6 +13,8 @@ class DdaIntersector : public Intersector {
  public:
   DdaIntersector(ClRuntime& runtime, const UniformGrid& grid,
                  const KernelOptions& kernel_options = {});
+  // The intersector keeps a reference to its grid: a temporary would dangle.
+  DdaIntersector(ClRuntime&, UniformGrid&&, const KernelOptions& = {}) = delete;
   std::string name() const override { return "dda"; }
   void intersect(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                  RayDiagnostics* diagnostics) override;

@@ -53,6 +53,8 @@ class GridRtIntersector : public Intersector {
  public:
   GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid, PeInterrupt interrupt,
                     const KernelOptions& kernel_options = {});
+  // The intersector keeps a reference to its grid: a temporary would dangle.
+  GridRtIntersector(ClRuntime&, UniformGrid&&, PeInterrupt, const KernelOptions& = {}) = delete;
   ~GridRtIntersector() override;
   GridRtIntersector(const GridRtIntersector&) = delete;
   GridRtIntersector& operator=(const GridRtIntersector&) = delete;
