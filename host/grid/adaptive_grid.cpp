@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <iterator>
 
+#include "grid_dda.h"
 #include "parallel_loops.h"
 #include "pe_hulls.h"
 #include "prepared_triangles.h"
@@ -229,7 +230,7 @@ UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& setting
   const int top_pes = top.peCount();
   auto plane = [&](int a, int k) {
     const float mins[3] = {g.minx, g.miny, g.minz}, cells[3] = {g.cellx, g.celly, g.cellz};
-    return mins[a] + float(k) * cells[a];  // the 3D-DDA's plane arithmetic
+    return gr_grid_plane(mins[a], cells[a], k);
   };
 
   // The top cells over the limit get their grids, in parallel.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "grid_dda.h"
 #include "parallel_loops.h"
 #include "pe_hulls.h"
 #include "prepared_triangles.h"
@@ -43,10 +44,10 @@ void UniformGrid::voxelBoxOfPe(int pe, glm::vec3& lo, glm::vec3& hi) const {
   }
   const glm::ivec3 v = voxelCoords(voxel_of_pe[pe]);
   const GrGridInfo& g = info;
-  lo = glm::vec3(g.minx + float(v.x) * g.cellx, g.miny + float(v.y) * g.celly,
-                 g.minz + float(v.z) * g.cellz);
-  hi = glm::vec3(g.minx + float(v.x + 1) * g.cellx, g.miny + float(v.y + 1) * g.celly,
-                 g.minz + float(v.z + 1) * g.cellz);
+  lo = glm::vec3(gr_grid_plane(g.minx, g.cellx, v.x), gr_grid_plane(g.miny, g.celly, v.y),
+                 gr_grid_plane(g.minz, g.cellz, v.z));
+  hi = glm::vec3(gr_grid_plane(g.minx, g.cellx, v.x + 1), gr_grid_plane(g.miny, g.celly, v.y + 1),
+                 gr_grid_plane(g.minz, g.cellz, v.z + 1));
 }
 
 glm::ivec3 UniformGrid::voxelCoords(int linear) const {
@@ -132,7 +133,7 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
   const float cells[3] = {grid.info.cellx, grid.info.celly, grid.info.cellz};
   for (int a = 0; a < 3; ++a) {
     planes[a].resize(size_t(n[a]) + 1);
-    for (int k = 0; k <= n[a]; ++k) planes[a][k] = mins[a] + float(k) * cells[a];
+    for (int k = 0; k <= n[a]; ++k) planes[a][k] = gr_grid_plane(mins[a], cells[a], k);
   }
 
   std::vector<std::vector<VoxelRef>> refs(parallelSliceCount());

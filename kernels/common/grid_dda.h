@@ -42,6 +42,17 @@ typedef struct {
 
 GR_FN int gr_clampi(int v, int lo, int hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
+/* Plane k of a grid axis, min + k * cell in float: the one arithmetic the walk, the PEs'
+ * boxes and the host's binning all use, so they share every plane's float bit for bit. */
+GR_FN float gr_grid_plane(float grid_min, float cell, int k) { return grid_min + (float)k * cell; }
+
+/* An axis's step (-1, 0 or +1) and 1/direction, unused on a zero axis; a subnormal
+ * component walks as 0 (see above). */
+GR_FN void gr_axis_walk(float d, int* step, float* inv) {
+  *step = d >= GR_FLT_MIN ? 1 : (d <= -GR_FLT_MIN ? -1 : 0);
+  *inv = *step != 0 ? 1.0f / d : 0.0f;
+}
+
 /* Entry and exit of the slab [lo, hi] along one axis; returns 0 if the ray misses it. */
 GR_FN int gr_slab(float o, float d, float lo, float hi, float* t0, float* t1) {
   if (d == 0.0f) {
@@ -62,7 +73,7 @@ GR_FN int gr_slab(float o, float d, float lo, float hi, float* t0, float* t1) {
 GR_FN float gr_next_boundary(float grid_min, float cell, int i, int step, float o, float inv) {
   if (step == 0) return GR_INF;
   int k = step > 0 ? i + 1 : i;
-  return (grid_min + (float)k * cell - o) * inv;
+  return (gr_grid_plane(grid_min, cell, k) - o) * inv;
 }
 
 GR_FN void gr_dda_update_exit(GrDda* s) {
@@ -82,9 +93,9 @@ GR_FN int gr_dda_begin(const GrGridInfo* g, float ox, float oy, float oz, float 
   if (dy > -GR_FLT_MIN && dy < GR_FLT_MIN) dy = 0.0f;
   if (dz > -GR_FLT_MIN && dz < GR_FLT_MIN) dz = 0.0f;
   float ax0, ax1, ay0, ay1, az0, az1;
-  if (!gr_slab(ox, dx, g->minx, g->minx + (float)g->nx * g->cellx, &ax0, &ax1)) return 0;
-  if (!gr_slab(oy, dy, g->miny, g->miny + (float)g->ny * g->celly, &ay0, &ay1)) return 0;
-  if (!gr_slab(oz, dz, g->minz, g->minz + (float)g->nz * g->cellz, &az0, &az1)) return 0;
+  if (!gr_slab(ox, dx, g->minx, gr_grid_plane(g->minx, g->cellx, g->nx), &ax0, &ax1)) return 0;
+  if (!gr_slab(oy, dy, g->miny, gr_grid_plane(g->miny, g->celly, g->ny), &ay0, &ay1)) return 0;
+  if (!gr_slab(oz, dz, g->minz, gr_grid_plane(g->minz, g->cellz, g->nz), &az0, &az1)) return 0;
   float t0 = tmin;
   t0 = ax0 > t0 ? ax0 : t0;
   t0 = ay0 > t0 ? ay0 : t0;
@@ -97,12 +108,9 @@ GR_FN int gr_dda_begin(const GrGridInfo* g, float ox, float oy, float oz, float 
   s->ox = ox;
   s->oy = oy;
   s->oz = oz;
-  s->sx = dx > 0.0f ? 1 : (dx < 0.0f ? -1 : 0);
-  s->sy = dy > 0.0f ? 1 : (dy < 0.0f ? -1 : 0);
-  s->sz = dz > 0.0f ? 1 : (dz < 0.0f ? -1 : 0);
-  s->idx = s->sx != 0 ? 1.0f / dx : 0.0f;
-  s->idy = s->sy != 0 ? 1.0f / dy : 0.0f;
-  s->idz = s->sz != 0 ? 1.0f / dz : 0.0f;
+  gr_axis_walk(dx, &s->sx, &s->idx);
+  gr_axis_walk(dy, &s->sy, &s->idy);
+  gr_axis_walk(dz, &s->sz, &s->idz);
   /* The entry voxel: where the ray is at t0, clamped into the grid against rounding. */
   float px = ox + t0 * dx, py = oy + t0 * dy, pz = oz + t0 * dz;
   s->ix = gr_clampi((int)floor((px - g->minx) / g->cellx), 0, g->nx - 1);

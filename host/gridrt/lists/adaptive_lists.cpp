@@ -31,15 +31,10 @@ struct Walk {
     entry.t_exit = t_exit;
   }
 
-  // The walk of `ray` appending to `out`, with gr_dda_begin's steps and inverse directions
-  // (a subnormal direction component walks as 0).
+  // The walk of `ray` appending to `out`, with gr_dda_begin's steps and inverse directions.
   static Walk of(const UniformGrid& grid, const GrRay& ray, std::vector<ListEntry>& out) {
     Walk w{grid, out, out.size(), {ray.ox, ray.oy, ray.oz}, {ray.dx, ray.dy, ray.dz}, {}, {}};
-    for (int a = 0; a < 3; ++a) {
-      const float d = w.d[a];
-      w.step[a] = d >= GR_FLT_MIN ? 1 : (d <= -GR_FLT_MIN ? -1 : 0);
-      w.inv[a] = w.step[a] != 0 ? 1.0f / d : 0.0f;
-    }
+    for (int a = 0; a < 3; ++a) gr_axis_walk(w.d[a], &w.step[a], &w.inv[a]);
     return w;
   }
 

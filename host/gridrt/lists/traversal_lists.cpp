@@ -9,6 +9,24 @@
 
 namespace gridrt {
 
+namespace {
+
+// The last step of building lists chunk by chunk (kListChunkRays rays each, on all cores):
+// lists.begin[r + 1] holds ray r's entry count and lists.scratch[c] chunk c's entries;
+// turns the counts into offsets and copies the chunks, in order, into lists.entries.
+void gatherChunkLists(TraversalLists& lists, size_t count, size_t chunks) {
+  for (size_t r = 0; r < count; ++r) lists.begin[r + 1] += lists.begin[r];
+  lists.entries.resize(lists.begin[count]);
+  parallelFor(0LL, (long long)(chunks), [&](long long chunk) {
+    const auto& out = lists.scratch[chunk];
+    if (!out.empty())
+      std::memcpy(&lists.entries[lists.begin[size_t(chunk) * kListChunkRays]], out.data(),
+                  out.size() * sizeof(ListEntry));
+  });
+}
+
+}  // namespace
+
 void computeListsOverCells(const GrGridInfo& g, const int* codes, const GrRay* rays, size_t count,
                            TraversalLists& lists, const ExpandCells& expand) {
   // Chunks handed out dynamically (list lengths vary a lot across a batch), each with its
@@ -53,17 +71,6 @@ void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t co
       [](const GrRay&, const ListEntry* cells, int n, std::vector<ListEntry>& out) {
         out.insert(out.end(), cells, cells + n);
       });
-}
-
-void gatherChunkLists(TraversalLists& lists, size_t count, size_t chunks) {
-  for (size_t r = 0; r < count; ++r) lists.begin[r + 1] += lists.begin[r];
-  lists.entries.resize(lists.begin[count]);
-  parallelFor(0LL, (long long)(chunks), [&](long long chunk) {
-    const auto& out = lists.scratch[chunk];
-    if (!out.empty())
-      std::memcpy(&lists.entries[lists.begin[size_t(chunk) * kListChunkRays]], out.data(),
-                  out.size() * sizeof(ListEntry));
-  });
 }
 
 }  // namespace gridrt

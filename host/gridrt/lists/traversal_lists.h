@@ -32,11 +32,6 @@ struct TraversalLists {
 // Rays per chunk of the list computation (a unit of dynamic scheduling).
 constexpr size_t kListChunkRays = 2048;
 
-// The last step of building lists chunk by chunk (kListChunkRays rays each, on all cores):
-// lists.begin[r + 1] holds ray r's entry count and lists.scratch[c] chunk c's entries;
-// turns the counts into offsets and copies the chunks, in order, into lists.entries.
-void gatherChunkLists(TraversalLists& lists, size_t count, size_t chunks);
-
 // Appends to `out` a ray's entries made from `cells`, its `count` cells of a grid walk.
 using ExpandCells = std::function<void(const GrRay& ray, const ListEntry* cells, int count,
                                        std::vector<ListEntry>& out)>;
