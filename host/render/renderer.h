@@ -27,7 +27,7 @@ namespace gridrt {
 // whole rows that reuse one another's buffers: memory follows the pass, not the image
 // (a 4K frame took 3.4 GB in one pass). A pixel lies in one pass, so the image is the
 // same bit for bit. A row is never split: one row's samples may exceed it.
-constexpr size_t kMaxPassRays = size_t(1) << 18;
+constexpr size_t kMaxPassRays = size_t(1) << 19;
 
 struct RenderSettings {
   int width = 640;
