@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "parallel_loops.h"
+#include "radix_sort.h"
 
 namespace gridrt {
 
@@ -262,8 +263,9 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
       order[k].first = glm::length(0.5f * (lo + hi) - eye);
     });
     // Ties in distance by PE, as a sort of (distance, PE) pairs: the slot k of pe_runs
-    // increases with the PE.
-    std::sort(order.begin(), order.end());
+    // increases with the PE and the sort is stable (a radix sort: std::sort of the pairs
+    // took 0.9 ms of the row of 16 bunnies' 3.3 ms of bundling, 16,099 PEs in view).
+    radixSortByKey(order, scratch.sort_scratch);
   }
   // Tasks in tile-row order (PE order within a row): consecutive work-groups read
   // neighbouring rays, and phase 2 updates one band of the image at a time.
