@@ -162,8 +162,6 @@ double cameraOutlineMargin(const PinholeView& view) {
 void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundles& bundles,
                       bool near_first, CameraBundleScratch& scratch) {
   auto& thread_runs = scratch.thread_runs;
-  auto& row_start = scratch.row_start;
-  auto& sorted = scratch.sorted;
   const PixelWindow& win = view.window;
   const int ww = win.width(), wh = win.height();
   const int tiles_x = (ww + kTileSize - 1) / kTileSize, tiles_y = (wh + kTileSize - 1) / kTileSize;
@@ -267,20 +265,17 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
     // took 0.9 ms of the row of 16 bunnies' 3.3 ms of bundling, 16,099 PEs in view).
     radixSortByKey(order, scratch.sort_scratch);
   }
-  // Tasks in tile-row order (PE order within a row): consecutive work-groups read
-  // neighbouring rays, and phase 2 updates one band of the image at a time.
-  row_start.assign(tiles_y + 1, 0);
-  for (const std::vector<TileRun>& runs : thread_runs)
-    for (const TileRun& r : runs) ++row_start[r.ty + 1];
-  for (int ty = 0; ty < tiles_y; ++ty) row_start[ty + 1] += row_start[ty];
-  sorted.resize(row_start[tiles_y]);
+  // Tasks PE by PE (nearest first with near_first), each PE's runs in tile-row order: the
+  // work-groups of one PE follow each other and find its triangles and culling boxes in
+  // cache (in tile-row order, PE order within a row, a PE's next row came a row of tasks
+  // later: on the row of 16 bunnies at 640x480, 17,300 PEs, primary rays 11.44 -> 10.96
+  // ms, the bunny on a floor 1000 times its size 14.2 -> 13.4). Phase 2 reads the tasks
+  // in any order.
+  bundles.clearTasks();
   for (const auto& [distance, slot] : order)
     for (const TileRun* r = pe_runs[slot].first; r != pe_runs[slot].second; ++r)
-      sorted[row_start[r->ty]++] = *r;
-  bundles.clearTasks();
-  for (const TileRun& r : sorted)
-    bundles.addRange(r.pe, (r.ty * tiles_x + r.tx0) * GR_PACKET_LANES,
-                     (r.tx1 - r.tx0) * GR_PACKET_LANES);
+      bundles.addRange(r->pe, (r->ty * tiles_x + r->tx0) * GR_PACKET_LANES,
+                       (r->tx1 - r->tx0) * GR_PACKET_LANES);
 }
 
 }  // namespace gridrt

@@ -23,8 +23,6 @@ struct TileRun {
 // Memory reused between calls.
 struct CameraBundleScratch {
   std::vector<std::vector<TileRun>> thread_runs;  // each thread's runs
-  std::vector<size_t> row_start;                  // counting sort by tile row
-  std::vector<TileRun> sorted;
   // (distance to the eye, slot in pe_runs) of the PEs in view, nearest first when asked
   std::vector<std::pair<float, int>> near_first;
   std::vector<std::pair<float, int>> sort_scratch;  // the radix sort's second buffer
@@ -45,7 +43,7 @@ struct CameraBundleScratch {
 constexpr double kCameraOutlineEpsilons = 64.0;
 double cameraOutlineMargin(const PinholeView& view);
 
-// near_first: tasks of nearer PEs first in every tile row (for the interrupt).
+// near_first: the tasks of nearer PEs first (for the interrupt).
 void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundles& bundles,
                       bool near_first, CameraBundleScratch& scratch);
 
