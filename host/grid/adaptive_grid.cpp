@@ -114,7 +114,9 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base,
   const int slices = ids.size() >= kParallelNodeTriangles ? parallelSliceCount() : 1;
   std::vector<std::vector<CellRef>> refs(slices);
   parallelSlices(slices, [&](int me, int count) {
-    auto& mine = refs[me];
+    // Grown in a vector of the slice's own: pushing into refs[me] rewrote its end pointer,
+    // on a cache line the other slices' vectors share, for every reference.
+    std::vector<CellRef> mine;
     const auto [t_begin, t_end] = sliceRange(ids.size(), me, count);
     for (size_t t = t_begin; t < t_end; ++t) {
       glm::dvec3 v[3];
@@ -140,6 +142,7 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base,
               mine.push_back({x + r[0] * (y + r[1] * z), ids[t]});
           }
     }
+    refs[me] = std::move(mine);
   });
   std::vector<int> count(cells, 0);
   for (const auto& list : refs)

@@ -138,7 +138,9 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
 
   std::vector<std::vector<VoxelRef>> refs(parallelSliceCount());
   parallelSlices(int(refs.size()), [&](int me, int count) {
-    auto& mine = refs[me];
+    // Grown in a vector of the slice's own: pushing into refs[me] rewrote its end pointer,
+    // on a cache line the other slices' vectors share, for every reference.
+    std::vector<VoxelRef> mine;
     const auto [t_begin, t_end] = sliceRange(size_t(triangles.size()), me, count);
     for (size_t t = t_begin; t < t_end; ++t) {
       glm::dvec3 v[3];
@@ -163,6 +165,7 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
               mine.push_back({x + n.x * (y + n.y * z), int(t)});
           }
     }
+    refs[me] = std::move(mine);
   });
   // Counting sort by voxel. Threads hold consecutive triangle ranges in order, so
   // walking thread 0, 1, ... keeps each voxel's triangles in increasing global index.

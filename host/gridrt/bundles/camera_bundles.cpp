@@ -187,7 +187,11 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
   const int pes = grid.peCount();
   thread_runs.resize(parallelSliceCount());
   parallelSlices(int(thread_runs.size()), [&](int me, int count) {
-    std::vector<TileRun>& runs = thread_runs[me];
+    // The slice's runs grow in a vector of its own, moved in and out of thread_runs (its
+    // memory kept between calls): pushing into thread_runs[me] in place rewrote its end
+    // pointer, on the cache line of the other threads' vectors, for every run (false
+    // sharing: 14 % of this loop's samples on the row of 16 bunnies).
+    std::vector<TileRun> runs = std::move(thread_runs[me]);
     runs.clear();
     std::vector<glm::dvec2> hull;
     const auto [pe_begin, pe_end] = sliceRange(size_t(pes), me, count);
@@ -235,6 +239,7 @@ void bundleCameraRays(const UniformGrid& grid, const PinholeView& view, RayBundl
         if (tx0 < tx1) runs.push_back(TileRun{pe, ty, tx0, tx1});
       }
     }
+    thread_runs[me] = std::move(runs);
   });
   // The PEs that reach a tile, each with its runs (consecutive: the slices hold increasing
   // PEs and each PE's runs in increasing tile rows). With near_first, nearest the eye first

@@ -93,8 +93,9 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
   thread_windows.assign(slices, std::array<FaceWindow, 6>{});
   std::vector<float> slice_miss(slices, 0.0f);
   parallelSlices(slices, [&](int me, int n) {
-    std::array<FaceWindow, 6>& windows = thread_windows[me];
-    float& miss = slice_miss[me];
+    // Accumulated in locals and stored once: the slices' slots share cache lines.
+    std::array<FaceWindow, 6> windows{};
+    float miss = 0.0f;
     const auto [r0, r1] = sliceRange(count, me, n);
     for (size_t r = r0; r < r1; ++r) {
       const GrRay& ray = rays[r];
@@ -109,6 +110,8 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
       scratch.uv[2 * r + 1] = v;
       windows[face].add(u, v);
     }
+    thread_windows[me] = windows;
+    slice_miss[me] = miss;
   });
   const float miss = *std::max_element(slice_miss.begin(), slice_miss.end());
   // Each face's cells cover the window its rays occupy, about kLightRaysPerCell a cell.
@@ -166,7 +169,8 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
   const int pes = grid.peCount();
   scratch.thread_runs.resize(slices);
   parallelSlices(slices, [&](int me, int count) {
-    auto& runs = scratch.thread_runs[me];
+    // A vector of the slice's own while it grows (false sharing, camera_bundles.cpp).
+    auto runs = std::move(scratch.thread_runs[me]);
     runs.clear();
     auto addRow = [&](int pe, int face, int r, int c0, int c1) {
       const FaceWindow& fw = faces[face];
@@ -223,6 +227,7 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
         for (int r = r0; r < r1; ++r) addRow(pe, face, r, c0, c1);
       }
     }
+    scratch.thread_runs[me] = std::move(runs);
   });
   // Tasks in cell-row order: neighbouring work-groups read neighbouring rays, and phase 2
   // updates one stretch of bundle order at a time.
