@@ -111,6 +111,7 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base,
     int cell;
     int triangle;
   };
+  const AxisCells axis_cells[3] = {{planes[0], m}, {planes[1], m}, {planes[2], m}};
   const int slices = ids.size() >= kParallelNodeTriangles ? parallelSliceCount() : 1;
   std::vector<std::vector<CellRef>> refs(slices);
   parallelSlices(slices, [&](int me, int count) {
@@ -124,7 +125,7 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base,
       const glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2]));
       const glm::dvec3 thi = glm::max(v[0], glm::max(v[1], v[2]));
       int first[3], last[3];
-      for (int a = 0; a < 3; ++a) cellRangeOnAxis(planes[a], tlo[a], thi[a], m, first[a], last[a]);
+      for (int a = 0; a < 3; ++a) axis_cells[a].range(tlo[a], thi[a], first[a], last[a]);
       // A triangle whose bounding box meets one grown cell only: its part inside this box
       // grown by m (where it overlaps, or it would not be here) lies in that cell, since
       // the grown cells cover the grown box. No test needed, as in the uniform grid.

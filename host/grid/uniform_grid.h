@@ -112,12 +112,21 @@ struct UniformGrid {
   void hullOfPe(int pe, glm::vec3& lo, glm::vec3& hi) const;
 };
 
-// The cells [first, last] on one axis whose extent between `planes` (cell i from planes[i]
-// to planes[i + 1], increasing) grown by m may meet [lo, hi]: widened by a billionth of
-// the mean cell against double rounding (the exact overlap test decides), clamped to the
-// cells. Used by both grids' binning: their cells' faces are the planes the walks use.
-void cellRangeOnAxis(const std::vector<float>& planes, double lo, double hi, double m, int& first,
-                     int& last);
+// One axis of a grid's cells as both grids' binning searches them: cell i from planes[i]
+// to planes[i + 1] (increasing; the float planes the walks use), each grown by m.
+class AxisCells {
+ public:
+  AxisCells(const std::vector<float>& planes, double m);
+  // The cells [first, last] whose grown extent may meet [lo, hi]: widened by a billionth
+  // of the mean cell against double rounding (the exact overlap test decides), clamped to
+  // the cells.
+  void range(double lo, double hi, int& first, int& last) const;
+
+ private:
+  const float* planes_;
+  int cells_;
+  double p0_, cells_per_unit_, m_, slack_;
+};
 
 // R_i = d_i * cbrt(density * N / V), each at least 1, capped by the limits above.
 // Flat or empty extents are floored at 1e-3 of the largest so V is never 0.
