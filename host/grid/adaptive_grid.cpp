@@ -133,13 +133,14 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base,
         mine.push_back({first[0] + r[0] * (first[1] + r[1] * first[2]), ids[t]});
         continue;
       }
+      const TriangleBoxTest test(v[0], v[1], v[2]);
       for (int z = first[2]; z <= last[2]; ++z)
         for (int y = first[1]; y <= last[1]; ++y)
           for (int x = first[0]; x <= last[0]; ++x) {
             const glm::dvec3 clo = glm::dvec3(planes[0][x], planes[1][y], planes[2][z]) - m;
             const glm::dvec3 chi =
                 glm::dvec3(planes[0][x + 1], planes[1][y + 1], planes[2][z + 1]) + m;
-            if (triangleOverlapsBox(clo, chi, v[0], v[1], v[2]))
+            if (test.overlaps(clo, chi))
               mine.push_back({x + r[0] * (y + r[1] * z), ids[t]});
           }
     }

@@ -38,3 +38,38 @@ bool triangleOverlapsBox(const glm::dvec3& box_lo, const glm::dvec3& box_hi, con
 }
 
 }  // namespace gridrt
+
+namespace gridrt {
+
+TriangleBoxTest::TriangleBoxTest(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c)
+    : lo_(glm::min(a, glm::min(b, c))), hi_(glm::max(a, glm::max(b, c))) {
+  const glm::dvec3 e[3] = {b - a, c - b, a - c};
+  axis_[0] = glm::cross(e[0], e[1]);
+  int k = 1;
+  for (const glm::dvec3& edge : e) {  // unit x edge, without multiplying by 0 and 1
+    axis_[k++] = glm::dvec3(0.0, -edge.z, edge.y);
+    axis_[k++] = glm::dvec3(edge.z, 0.0, -edge.x);
+    axis_[k++] = glm::dvec3(-edge.y, edge.x, 0.0);
+  }
+  for (k = 0; k < kAxes; ++k) {
+    const double p0 = glm::dot(axis_[k], a), p1 = glm::dot(axis_[k], b), p2 = glm::dot(axis_[k], c);
+    min_[k] = std::min({p0, p1, p2});
+    max_[k] = std::max({p0, p1, p2});
+  }
+}
+
+bool TriangleBoxTest::overlaps(const glm::dvec3& box_lo, const glm::dvec3& box_hi) const {
+  // Box face normals: the bounding boxes (exact).
+  for (int k = 0; k < 3; ++k)
+    if (lo_[k] > box_hi[k] || hi_[k] < box_lo[k]) return false;
+  const glm::dvec3 center = (box_lo + box_hi) * 0.5, h = (box_hi - box_lo) * 0.5;
+  for (int k = 0; k < kAxes; ++k) {
+    const glm::dvec3& axis = axis_[k];
+    const double at = glm::dot(axis, center);
+    const double r = h.x * std::fabs(axis.x) + h.y * std::fabs(axis.y) + h.z * std::fabs(axis.z);
+    if (min_[k] > at + r || max_[k] < at - r) return false;
+  }
+  return true;
+}
+
+}  // namespace gridrt

@@ -163,13 +163,14 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
         mine.push_back({first[0] + n.x * (first[1] + n.y * first[2]), int(t)});
         continue;
       }
+      const TriangleBoxTest test(v[0], v[1], v[2]);
       for (int z = first[2]; z <= last[2]; ++z)
         for (int y = first[1]; y <= last[1]; ++y)
           for (int x = first[0]; x <= last[0]; ++x) {
             const glm::dvec3 cell_lo = glm::dvec3(planes[0][x], planes[1][y], planes[2][z]) - m;
             const glm::dvec3 cell_hi =
                 glm::dvec3(planes[0][x + 1], planes[1][y + 1], planes[2][z + 1]) + m;
-            if (triangleOverlapsBox(cell_lo, cell_hi, v[0], v[1], v[2]))
+            if (test.overlaps(cell_lo, cell_hi))
               mine.push_back({x + n.x * (y + n.y * z), int(t)});
           }
     }
