@@ -16,7 +16,7 @@ namespace {
 
 struct Leaf {
   float box[6];                // lo x, y, z, hi x, y, z
-  std::vector<int> triangles;  // positions in the top cell's triangles, increasing
+  std::vector<int> triangles;  // positions in the input triangles, increasing
 };
 
 // A grid node over at least this many triangles sorts them into its cells on every thread
@@ -140,8 +140,7 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base,
             const glm::dvec3 clo = glm::dvec3(planes[0][x], planes[1][y], planes[2][z]) - m;
             const glm::dvec3 chi =
                 glm::dvec3(planes[0][x + 1], planes[1][y + 1], planes[2][z + 1]) + m;
-            if (test.overlaps(clo, chi))
-              mine.push_back({x + r[0] * (y + r[1] * z), ids[t]});
+            if (test.overlaps(clo, chi)) mine.push_back({x + r[0] * (y + r[1] * z), ids[t]});
           }
     }
     refs[me] = std::move(mine);
@@ -193,14 +192,12 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base,
   return node;
 }
 
-// Triangles sorted by global index, as the union of merged cells.
-using TriangleSet = std::vector<GrTriangle>;
+// Triangle positions, increasing: the union of merged cells.
+using TriangleSet = std::vector<int>;
 
-void unite(TriangleSet& set, const GrTriangle* first, const GrTriangle* last,
-           TriangleSet& scratch) {
+void unite(TriangleSet& set, const int* first, const int* last, TriangleSet& scratch) {
   scratch.clear();
-  std::set_union(set.begin(), set.end(), first, last, std::back_inserter(scratch),
-                 [](const GrTriangle& a, const GrTriangle& b) { return a.prim < b.prim; });
+  std::set_union(set.begin(), set.end(), first, last, std::back_inserter(scratch));
   set.swap(scratch);
 }
 
@@ -209,15 +206,15 @@ void unite(TriangleSet& set, const GrTriangle* first, const GrTriangle* last,
 namespace {
 
 // The uniform grid of the automatic resolution under the settings' density and margin.
-UniformGrid topGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
+UniformBins topGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
                     const GridSettings& settings) {
   GridSettings top_settings = settings;
   top_settings.automatic = true;
   top_settings.structure = GridStructure::Uniform;
-  return buildUniformGrid(triangles, bounds, top_settings);
+  return binUniformGrid(triangles, bounds, top_settings);
 }
 
-bool hasFullVoxel(const UniformGrid& grid, int max_leaf_triangles) {
+bool hasFullVoxel(const UniformBins& grid, int max_leaf_triangles) {
   for (int pe = 0; pe < grid.peCount(); ++pe)
     if (grid.triangleCountOfPe(pe) > max_leaf_triangles) return true;
   return false;
@@ -227,53 +224,53 @@ bool hasFullVoxel(const UniformGrid& grid, int max_leaf_triangles) {
 
 UniformGrid buildAdaptiveGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
                               const GridSettings& settings) {
-  return adaptiveGridOver(topGrid(triangles, bounds, settings), settings);
+  return adaptiveGridOver(topGrid(triangles, bounds, settings), triangles, settings);
 }
 
-UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& settings) {
+UniformGrid adaptiveGridOver(const UniformBins& top, const std::vector<GrTriangle>& triangles,
+                             const GridSettings& settings) {
   const GrGridInfo& g = top.info;
   const int top_pes = top.peCount();
   auto plane = [&](int a, int k) {
     const float mins[3] = {g.minx, g.miny, g.minz}, cells[3] = {g.cellx, g.celly, g.cellz};
     return gr_grid_plane(mins[a], cells[a], k);
   };
+  auto topPositions = [&](int pe) { return top.positions.data() + top.pe_tri_begin[pe]; };
 
   // The top cells over the limit get their grids, in parallel.
   std::vector<Subtree> trees(top_pes);
   std::vector<char> split(top_pes, 0);
   parallelForDynamic(int(0), int(top_pes), int(1), [&](int pe) {
     if (top.triangleCountOfPe(pe) <= settings.max_leaf_triangles) return;
-    const glm::ivec3 v = top.voxelCoords(top.voxel_of_pe[pe]);
+    const glm::ivec3 v = voxelCoordsIn(g, top.voxel_of_pe[pe]);
     const float lo[3] = {plane(0, v.x), plane(1, v.y), plane(2, v.z)};
     const float hi[3] = {plane(0, v.x + 1), plane(1, v.y + 1), plane(2, v.z + 1)};
-    std::vector<int> ids(top.triangleCountOfPe(pe));
-    for (size_t k = 0; k < ids.size(); ++k) ids[k] = int(k);
-    split[pe] =
-        buildNode(lo, hi, top.pe_triangles.data() + top.pe_tri_begin[pe], ids, 1, top.margin,
-                  settings.density, settings.max_leaf_triangles, trees[pe]) >= 0;
+    const std::vector<int> ids(topPositions(pe), topPositions(pe + 1));
+    split[pe] = buildNode(lo, hi, triangles.data(), ids, 1, top.margin, settings.density,
+                          settings.max_leaf_triangles, trees[pe]) >= 0;
   });
 
   UniformGrid grid;
   grid.info = top.info;
   grid.margin = top.margin;
-  grid.triangle_count = top.triangle_count;
+  grid.triangle_count = triangles.size();
   AdaptiveCells& a = grid.adaptive;
-  a.top.assign(top.voxelCount(), -1);
-  // Room for every leaf at once (merged top leaves hold at most their cells' triangles):
-  // growing these arrays leaf by leaf copied and faulted in tens of megabytes.
-  size_t leaf_count = size_t(top_pes), leaf_triangles = top.pe_triangles.size();
-  for (const Subtree& t : trees) {
-    leaf_count += t.leaves.size();
-    for (const Leaf& leaf : t.leaves) leaf_triangles += leaf.triangles.size();
-  }
+  a.top.assign(top.pe_of_voxel.size(), -1);
+  // Room for every leaf at once: growing these arrays leaf by leaf copied and faulted in
+  // megabytes.
+  size_t leaf_count = size_t(top_pes);
+  for (const Subtree& t : trees) leaf_count += t.leaves.size();
   grid.pe_box.reserve(leaf_count * 6);
-  grid.pe_triangles.reserve(leaf_triangles);
   grid.pe_tri_begin.reserve(leaf_count + 1);
   grid.pe_tri_begin.push_back(0);
-  auto addPe = [&](const float box[6], const GrTriangle* first, size_t count) {
+  // The merged top leaves' triangle positions, one after another in PE order (so PE p's
+  // are merged_positions[pe_tri_begin[p] .. pe_tri_begin[p + 1])).
+  std::vector<int> merged_positions;
+  merged_positions.reserve(top.positions.size());
+  auto addPe = [&](const float box[6], const TriangleSet& set) {
     grid.pe_box.insert(grid.pe_box.end(), box, box + 6);
-    grid.pe_triangles.insert(grid.pe_triangles.end(), first, first + count);
-    grid.pe_tri_begin.push_back(int(grid.pe_triangles.size()));
+    merged_positions.insert(merged_positions.end(), set.begin(), set.end());
+    grid.pe_tri_begin.push_back(int(merged_positions.size()));
     return int(grid.pe_tri_begin.size()) - 2;
   };
 
@@ -281,13 +278,13 @@ UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& setting
   // layers along z) while the box's triangles stay the same set or at most
   // kMergeMaxTriangles: a floor's or a wall's cells hold one or both of its two triangles.
   const int nx = g.nx, ny = g.ny, nz = g.nz;
-  std::vector<char> taken(top.voxelCount(), 0);
+  std::vector<char> taken(top.pe_of_voxel.size(), 0);
   TriangleSet set, grown, scratch;
-  auto cellTriangles = [&](int v, const GrTriangle*& first, const GrTriangle*& last) {
+  auto cellTriangles = [&](int v, const int*& first, const int*& last) {
     const int pe = top.pe_of_voxel[v];
     if (pe < 0 || split[pe] || taken[v]) return false;
-    first = top.pe_triangles.data() + top.pe_tri_begin[pe];
-    last = top.pe_triangles.data() + top.pe_tri_begin[pe + 1];
+    first = topPositions(pe);
+    last = topPositions(pe + 1);
     return true;
   };
   // Whether the cells [x0, x1) x [y0, y1) x [z0, z1) join `set` (into `grown`).
@@ -297,7 +294,7 @@ UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& setting
     for (int z = z0; z < z1; ++z)
       for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x) {
-          const GrTriangle *first, *last;
+          const int *first, *last;
           if (!cellTriangles(x + nx * (y + ny * z), first, last)) return false;
           same = same && size_t(last - first) == set.size();
           unite(grown, first, last, scratch);
@@ -310,7 +307,7 @@ UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& setting
     for (int y = 0; y < ny; ++y)
       for (int x = 0; x < nx; ++x) {
         const int v = x + nx * (y + ny * z);
-        const GrTriangle *first, *last;
+        const int *first, *last;
         if (!cellTriangles(v, first, last)) continue;  // empty, split or merged already
         set.assign(first, last);
         int x1 = x + 1, y1 = y + 1, z1 = z + 1;
@@ -319,7 +316,7 @@ UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& setting
         while (z1 < nz && joins(x, x1, y, y1, z1, z1 + 1)) set.swap(grown), ++z1;
         const float box[6] = {plane(0, x),  plane(1, y),  plane(2, z),
                               plane(0, x1), plane(1, y1), plane(2, z1)};
-        const int id = addPe(box, set.data(), set.size());
+        const int id = addPe(box, set);
         for (int zz = z; zz < z1; ++zz)
           for (int yy = y; yy < y1; ++yy)
             for (int xx = x; xx < x1; ++xx) {
@@ -328,32 +325,29 @@ UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& setting
               a.top[w] = id;
             }
       }
-  // The grids below the split cells, spliced in voxel order: first the structure and each
-  // leaf's place, then the leaves' triangles copied in parallel.
-  struct LeafCopy {
-    const GrTriangle* base;
-    const Leaf* leaf;
-  };
-  std::vector<LeafCopy> copies;
+  const int merged_pes = grid.peCount();
+  // The grids below the split cells, spliced in voxel order.
+  std::vector<const Leaf*> leaves;
   for (int pe = 0; pe < top_pes; ++pe) {
     if (!split[pe]) continue;
     Subtree& t = trees[pe];
     const int node_base = int(a.nodes.size());
     appendGrids(a.nodes, a.cells, a.planes, t, grid.peCount());
-    const GrTriangle* base = top.pe_triangles.data() + top.pe_tri_begin[pe];
     for (const Leaf& leaf : t.leaves) {
       grid.pe_box.insert(grid.pe_box.end(), leaf.box, leaf.box + 6);
       grid.pe_tri_begin.push_back(grid.pe_tri_begin.back() + int(leaf.triangles.size()));
-      copies.push_back({base, &leaf});
+      leaves.push_back(&leaf);
     }
     a.top[top.voxel_of_pe[pe]] = -(node_base + 2);
     a.depth = std::max(a.depth, t.depth);
   }
-  const int first_copied = grid.peCount() - int(copies.size());
+  // Every PE's triangles copied from the input once, in parallel.
   grid.pe_triangles.resize(size_t(grid.pe_tri_begin.back()));
-  parallelFor(size_t(0), copies.size(), [&](size_t k) {
-    GrTriangle* out = grid.pe_triangles.data() + grid.pe_tri_begin[first_copied + int(k)];
-    for (int id : copies[k].leaf->triangles) *out++ = copies[k].base[id];
+  parallelForDynamic(int(0), grid.peCount(), int(64), [&](int pe) {
+    const int* from = pe < merged_pes ? merged_positions.data() + grid.pe_tri_begin[pe]
+                                      : leaves[pe - merged_pes]->triangles.data();
+    GrTriangle* out = grid.pe_triangles.data() + grid.pe_tri_begin[pe];
+    for (int k = 0, n = grid.triangleCountOfPe(pe); k < n; ++k) out[k] = triangles[from[k]];
   });
   trees = {};
   grid.info.pe_count = grid.peCount();
@@ -365,11 +359,11 @@ UniformGrid buildGrid(const std::vector<GrTriangle>& triangles, const Bounds& bo
                       const GridSettings& settings) {
   if (!settings.automatic || settings.structure == GridStructure::Uniform)
     return buildUniformGrid(triangles, bounds, settings);
-  UniformGrid top = topGrid(triangles, bounds, settings);
+  UniformBins top = topGrid(triangles, bounds, settings);
   if (settings.structure == GridStructure::WhereNeeded &&
       !hasFullVoxel(top, settings.max_leaf_triangles))
-    return top;
-  return adaptiveGridOver(top, settings);
+    return uniformGridOf(std::move(top), triangles);
+  return adaptiveGridOver(top, triangles, settings);
 }
 
 }  // namespace gridrt

@@ -46,8 +46,9 @@ constexpr double kMinCellMargins = 4.0;
 UniformGrid buildAdaptiveGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
                               const GridSettings& settings);
 
-// The same over a top grid made already (the uniform grid of the automatic resolution).
-UniformGrid adaptiveGridOver(const UniformGrid& top, const GridSettings& settings);
+// The same over a top grid binned already (the uniform grid of the automatic resolution).
+UniformGrid adaptiveGridOver(const UniformBins& top, const std::vector<GrTriangle>& triangles,
+                             const GridSettings& settings);
 
 // The grid the settings ask for (GridSettings::structure; a fixed resolution is uniform).
 // WhereNeeded keeps the uniform grid when no voxel holds more than max_leaf_triangles: its

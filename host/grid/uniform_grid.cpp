@@ -50,9 +50,11 @@ void UniformGrid::voxelBoxOfPe(int pe, glm::vec3& lo, glm::vec3& hi) const {
                  gr_grid_plane(g.minz, g.cellz, v.z + 1));
 }
 
-glm::ivec3 UniformGrid::voxelCoords(int linear) const {
+glm::ivec3 voxelCoordsIn(const GrGridInfo& info, int linear) {
   return {linear % info.nx, (linear / info.nx) % info.ny, linear / (info.nx * info.ny)};
 }
+
+glm::ivec3 UniformGrid::voxelCoords(int linear) const { return voxelCoordsIn(info, linear); }
 
 AxisCells::AxisCells(const std::vector<float>& planes, double m)
     : planes_(planes.data()), cells_(int(planes.size()) - 1), p0_(planes[0]), m_(m) {
@@ -98,10 +100,9 @@ glm::ivec3 autoGridResolution(const Bounds& bounds, size_t triangle_count, float
   return r;
 }
 
-UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
-                             const GridSettings& settings) {
-  UniformGrid grid;
-  grid.triangle_count = triangles.size();
+UniformBins binUniformGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
+                           const GridSettings& settings) {
+  UniformBins grid;
   glm::ivec3 n = settings.automatic
                      ? autoGridResolution(bounds, triangles.size(), settings.density)
                      : glm::clamp(settings.dims, glm::ivec3(1), glm::ivec3(kMaxGridResolution));
@@ -170,8 +171,7 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
             const glm::dvec3 cell_lo = glm::dvec3(planes[0][x], planes[1][y], planes[2][z]) - m;
             const glm::dvec3 cell_hi =
                 glm::dvec3(planes[0][x + 1], planes[1][y + 1], planes[2][z + 1]) + m;
-            if (test.overlaps(cell_lo, cell_hi))
-              mine.push_back({x + n.x * (y + n.y * z), int(t)});
+            if (test.overlaps(cell_lo, cell_hi)) mine.push_back({x + n.x * (y + n.y * z), int(t)});
           }
     }
     refs[me] = std::move(mine);
@@ -191,10 +191,25 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
     cursor[v] = grid.pe_tri_begin.back();
     grid.pe_tri_begin.push_back(grid.pe_tri_begin.back() + count[v]);
   }
-  grid.pe_triangles.resize(grid.pe_tri_begin.back());
+  grid.positions.resize(grid.pe_tri_begin.back());
   for (const auto& list : refs)
-    for (const auto& r : list) grid.pe_triangles[cursor[r.voxel]++] = triangles[r.triangle];
+    for (const auto& r : list) grid.positions[cursor[r.voxel]++] = r.triangle;
   grid.info.pe_count = grid.peCount();
+  return grid;
+}
+
+UniformGrid uniformGridOf(UniformBins&& bins, const std::vector<GrTriangle>& triangles) {
+  UniformGrid grid;
+  grid.info = bins.info;
+  grid.margin = bins.margin;
+  grid.triangle_count = triangles.size();
+  grid.pe_of_voxel = std::move(bins.pe_of_voxel);
+  grid.voxel_of_pe = std::move(bins.voxel_of_pe);
+  grid.pe_tri_begin = std::move(bins.pe_tri_begin);
+  grid.pe_triangles.resize(bins.positions.size());
+  parallelFor(size_t(0), bins.positions.size(),
+              [&](size_t k) { grid.pe_triangles[k] = triangles[bins.positions[k]]; });
+  bins.positions = {};
   std::vector<float> boxes(size_t(grid.peCount()) * 6);  // voxelBoxOfPe from the voxels
   for (int pe = 0; pe < grid.peCount(); ++pe) {
     glm::vec3 blo, bhi;
@@ -207,6 +222,11 @@ UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bou
   grid.pe_box = std::move(boxes);
   grid.pe_hull = peHulls(grid);
   return grid;
+}
+
+UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
+                             const GridSettings& settings) {
+  return uniformGridOf(binUniformGrid(triangles, bounds, settings), triangles);
 }
 
 }  // namespace gridrt

@@ -112,6 +112,23 @@ struct UniformGrid {
   void hullOfPe(int pe, glm::vec3& lo, glm::vec3& hi) const;
 };
 
+// The voxels of a uniform grid and the triangles each lists as positions in the input: the
+// first step of buildUniformGrid, and the top level the adaptive structure starts from
+// without copying triangles.
+struct UniformBins {
+  GrGridInfo info{};
+  double margin = 0.0;
+  std::vector<int> pe_of_voxel;   // as UniformGrid's
+  std::vector<int> voxel_of_pe;   // as UniformGrid's
+  std::vector<int> pe_tri_begin;  // per PE + 1: CSR offsets into positions
+  std::vector<int> positions;     // per PE, its triangles' positions in the input, increasing
+  int peCount() const { return pe_tri_begin.empty() ? 0 : int(pe_tri_begin.size()) - 1; }
+  int triangleCountOfPe(int pe) const { return pe_tri_begin[pe + 1] - pe_tri_begin[pe]; }
+};
+
+// Voxel `linear`'s coordinates (x fastest) in a grid of info's dimensions.
+glm::ivec3 voxelCoordsIn(const GrGridInfo& info, int linear);
+
 // One axis of a grid's cells as both grids' binning searches them: cell i from planes[i]
 // to planes[i + 1] (increasing; the float planes the walks use), each grown by m.
 class AxisCells {
@@ -133,6 +150,10 @@ class AxisCells {
 glm::ivec3 autoGridResolution(const Bounds& bounds, size_t triangle_count, float density);
 
 // Builds the grid over `triangles` (global order). Runs on all cores.
+// binUniformGrid, then uniformGridOf: the bins with their triangles copied in.
+UniformBins binUniformGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
+                           const GridSettings& settings);
+UniformGrid uniformGridOf(UniformBins&& bins, const std::vector<GrTriangle>& triangles);
 UniformGrid buildUniformGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
                              const GridSettings& settings);
 
