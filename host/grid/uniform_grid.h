@@ -130,7 +130,8 @@ struct UniformBins {
 glm::ivec3 voxelCoordsIn(const GrGridInfo& info, int linear);
 
 // One axis of a grid's cells as both grids' binning searches them: cell i from planes[i]
-// to planes[i + 1] (increasing; the float planes the walks use), each grown by m.
+// to planes[i + 1] (increasing; the float planes the walks use), each grown by m. It keeps
+// a pointer to the planes, which must outlive it.
 class AxisCells {
  public:
   AxisCells(const std::vector<float>& planes, double m);
@@ -149,8 +150,9 @@ class AxisCells {
 // Flat or empty extents are floored at 1e-3 of the largest so V is never 0.
 glm::ivec3 autoGridResolution(const Bounds& bounds, size_t triangle_count, float density);
 
-// Builds the grid over `triangles` (global order). Runs on all cores.
-// binUniformGrid, then uniformGridOf: the bins with their triangles copied in.
+// The uniform grid over `triangles` (global order), on all cores, in two steps:
+// binUniformGrid sorts the triangles' positions into the voxels; uniformGridOf copies the
+// triangles in and makes the PEs' boxes and hulls.
 UniformBins binUniformGrid(const std::vector<GrTriangle>& triangles, const Bounds& bounds,
                            const GridSettings& settings);
 UniformGrid uniformGridOf(UniformBins&& bins, const std::vector<GrTriangle>& triangles);

@@ -25,7 +25,7 @@ struct CameraBundleScratch {
   std::vector<std::vector<TileRun>> thread_runs;  // each thread's runs
   // (distance to the eye, slot in pe_runs) of the PEs in view, nearest first when asked
   std::vector<std::pair<float, int>> near_first;
-  std::vector<std::pair<float, int>> sort_scratch;  // the radix sort's second buffer
+  std::vector<std::pair<float, int>> sort_scratch;                 // the radix sort's second buffer
   std::vector<std::pair<const TileRun*, const TileRun*>> pe_runs;  // each such PE's runs
   int layout_width = 0, layout_height = 0;  // the window RayBundles::ray_of is for
 };
