@@ -7,6 +7,7 @@
 #include "grid_dda.h"
 #include "parallel_loops.h"
 #include "pe_hulls.h"
+#include "prefault.h"
 #include "prepared_triangles.h"
 #include "triangle_box_overlap.h"
 
@@ -341,8 +342,12 @@ UniformGrid adaptiveGridOver(const UniformBins& top, const std::vector<GrTriangl
     a.top[top.voxel_of_pe[pe]] = -(node_base + 2);
     a.depth = std::max(a.depth, t.depth);
   }
-  // Every PE's triangles copied from the input once, in parallel.
-  grid.pe_triangles.resize(size_t(grid.pe_tri_begin.back()));
+  // Every PE's triangles copied from the input once, in parallel, into memory faulted in
+  // on every core (prefault.h: 50 MB for the scattered copies).
+  const size_t total = size_t(grid.pe_tri_begin.back());
+  grid.pe_triangles.reserve(total);
+  prefaultForWriting(grid.pe_triangles.data(), total * sizeof(GrTriangle));
+  grid.pe_triangles.resize(total);
   parallelForDynamic(int(0), grid.peCount(), int(64), [&](int pe) {
     const int* from = pe < merged_pes ? merged_positions.data() + grid.pe_tri_begin[pe]
                                       : leaves[pe - merged_pes]->triangles.data();
