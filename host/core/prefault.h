@@ -8,6 +8,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "parallel_loops.h"
 
@@ -40,6 +41,17 @@ inline void prefaultForWriting(void* data, size_t bytes) {
   (void)data;
   (void)bytes;
 #endif
+}
+
+// Room for n elements in `v`, faulted in on every core, where it has less: for a vector
+// about to be filled whole, so its elements are dropped when it grows.
+template <typename T>
+void reserveFaultedIn(std::vector<T>& v, size_t n) {
+  if (n <= v.capacity()) return;
+  std::vector<T> fresh;
+  fresh.reserve(n);
+  prefaultForWriting(fresh.data(), n * sizeof(T));
+  v.swap(fresh);
 }
 
 }  // namespace gridrt

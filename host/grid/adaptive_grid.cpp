@@ -345,8 +345,7 @@ UniformGrid adaptiveGridOver(const UniformBins& top, const std::vector<GrTriangl
   // Every PE's triangles copied from the input once, in parallel, into memory faulted in
   // on every core (prefault.h: 50 MB for the scattered copies).
   const size_t total = size_t(grid.pe_tri_begin.back());
-  grid.pe_triangles.reserve(total);
-  prefaultForWriting(grid.pe_triangles.data(), total * sizeof(GrTriangle));
+  reserveFaultedIn(grid.pe_triangles, total);
   grid.pe_triangles.resize(total);
   parallelForDynamic(int(0), grid.peCount(), int(64), [&](int pe) {
     const int* from = pe < merged_pes ? merged_positions.data() + grid.pe_tri_begin[pe]

@@ -207,8 +207,7 @@ UniformGrid uniformGridOf(UniformBins&& bins, const std::vector<GrTriangle>& tri
   grid.pe_of_voxel = std::move(bins.pe_of_voxel);
   grid.voxel_of_pe = std::move(bins.voxel_of_pe);
   grid.pe_tri_begin = std::move(bins.pe_tri_begin);
-  grid.pe_triangles.reserve(bins.positions.size());  // faulted in on every core (prefault.h)
-  prefaultForWriting(grid.pe_triangles.data(), bins.positions.size() * sizeof(GrTriangle));
+  reserveFaultedIn(grid.pe_triangles, bins.positions.size());  // on every core (prefault.h)
   grid.pe_triangles.resize(bins.positions.size());
   parallelFor(size_t(0), bins.positions.size(),
               [&](size_t k) { grid.pe_triangles[k] = triangles[bins.positions[k]]; });

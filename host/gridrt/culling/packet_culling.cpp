@@ -80,12 +80,8 @@ void cullCoordinates(const GrCullFrame& c, float dx, float dy, float dz, float& 
 void computeCullBoxes(const GrCullFrame& frame, const glm::vec3& origin,
                       const std::vector<GrTriangle>& triangles, std::vector<CullBox>& boxes,
                       double error_factor) {
-  if (boxes.size() != triangles.size()) {  // fresh memory: faulted in on every core
-    boxes.clear();
-    boxes.reserve(triangles.size());
-    prefaultForWriting(boxes.data(), triangles.size() * sizeof(CullBox));
-    boxes.resize(triangles.size());
-  }
+  reserveFaultedIn(boxes, triangles.size());  // fresh memory: on every core (prefault.h)
+  boxes.resize(triangles.size());
   const glm::dvec3 o(origin);
   parallelFor(0LL, (long long)(triangles.size()), [&](long long k) {
     glm::dvec3 v[3];
@@ -101,12 +97,7 @@ bool CullPlaneCache::update(const GrCullFrame& frame, const glm::vec3& origin,
     return false;
   computeCullBoxes(frame, origin, triangles, boxes_);
   const size_t stride = triangles.size() + kCullPlanePadding;
-  if (planes_.size() != 4 * stride) {  // fresh memory: faulted in on every core
-    planes_.clear();
-    planes_.shrink_to_fit();
-    planes_.reserve(4 * stride);
-    prefaultForWriting(planes_.data(), 4 * stride * sizeof(float));
-  }
+  reserveFaultedIn(planes_, 4 * stride);
   planes_.assign(4 * stride, 0.0f);
   parallelFor(0LL, (long long)(boxes_.size()), [&](long long i) {
     planes_[i] = boxes_[i].amin;
