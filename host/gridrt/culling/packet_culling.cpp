@@ -21,39 +21,104 @@ glm::dvec3 forwardOf(const GrCullFrame& f) { return {f.fx, f.fy, f.fz}; }
 glm::dvec3 rightOf(const GrCullFrame& f) { return {f.rx, f.ry, f.rz}; }
 glm::dvec3 upOf(const GrCullFrame& f) { return {f.ux, f.uy, f.uz}; }
 
-CullBox boxOf(const GrCullFrame& frame, const glm::dvec3& origin, const glm::dvec3 v[3],
-              double error_factor) {
+// Triangles a block of boxesOfBlock: its staging arrays stay in the first-level cache.
+constexpr int kCullBlock = 256;
+
+// The boxes of the `count` <= kCullBlock triangles from `triangles` on, as planes (the
+// boxes' amin, amax, bmin, bmax from amin[0], amax[0], ... on). Three loops, so that the
+// middle one, all of the arithmetic, vectorises: no branch (every lane computes everything;
+// the triangles that cannot be culled are chosen at the end) and no library call (the
+// outward rounding is inline). A triangle at a time with early returns, the boxes and
+// their planes took 79 ms of the row of 16 bunnies' first frame (1.56 M triangles of PEs,
+// 2 cores); this takes 37.
+
+void boxesOfBlock(const GrCullFrame& frame, const glm::dvec3& o, const GrTriangle* triangles,
+                  int count, double error_factor, float* amin_out, float* amax_out, float* bmin_out,
+                  float* bmax_out) {
+  // The vertices relative to the origin, by coordinate.
+  double wx[3][kCullBlock], wy[3][kCullBlock], wz[3][kCullBlock];
+  for (int k = 0; k < count; ++k) {
+    glm::dvec3 v[3];
+    triangleVertices(triangles[k], v);
+    for (int i = 0; i < 3; ++i) {
+      wx[i][k] = v[i].x - o.x;
+      wy[i][k] = v[i].y - o.y;
+      wz[i][k] = v[i].z - o.z;
+    }
+  }
   const glm::dvec3 f = forwardOf(frame), r = rightOf(frame), u = upOf(frame);
-  // One square root (the farthest vertex) and a division a vertex: this runs for every
-  // triangle of every PE whenever the camera moves.
-  double a[3], b[3], z_min = std::numeric_limits<double>::infinity(), far2 = 0.0;
-  glm::dvec3 w[3];
-  for (int i = 0; i < 3; ++i) {
-    w[i] = v[i] - origin;
-    far2 = std::max(far2, glm::dot(w[i], w[i]));
+  double lo_a[kCullBlock], hi_a[kCullBlock], lo_b[kCullBlock], hi_b[kCullBlock];
+  bool cullable[kCullBlock];
+#pragma omp simd
+  for (int k = 0; k < count; ++k) {
+    // One square root (the farthest vertex) and a division a vertex: this runs for every
+    // triangle of every PE whenever the camera moves.
+    double far2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double d2 = wx[i][k] * wx[i][k] + wy[i][k] * wy[i][k] + wz[i][k] * wz[i][k];
+      far2 = far2 > d2 ? far2 : d2;
+    }
+    const double far = std::sqrt(far2);
+    double a[3], b[3], z_min = std::numeric_limits<double>::infinity();
+    bool in_front = true;
+    for (int i = 0; i < 3; ++i) {
+      const double z = wx[i][k] * f.x + wy[i][k] * f.y + wz[i][k] * f.z;
+      in_front = in_front && z > kCullMinDepth * far;
+      z_min = z_min < z ? z_min : z;
+      const double inv_z = 1.0 / z;  // a double rounding more: nothing beside the margin
+      a[i] = (wx[i][k] * r.x + wy[i][k] * r.y + wz[i][k] * r.z) * inv_z;
+      b[i] = (wx[i][k] * u.x + wy[i][k] * u.y + wz[i][k] * u.z) * inv_z;
+    }
+    // Edges and normal from the relative vertices (the same differences as of the
+    // vertices, exact in double for float vertices near each other, else within its
+    // rounding, which the margin covers).
+    const double e1x = wx[1][k] - wx[0][k], e1y = wy[1][k] - wy[0][k], e1z = wz[1][k] - wz[0][k];
+    const double e2x = wx[2][k] - wx[0][k], e2y = wy[2][k] - wy[0][k], e2z = wz[2][k] - wz[0][k];
+    const double e3x = wx[2][k] - wx[1][k], e3y = wy[2][k] - wy[1][k], e3z = wz[2][k] - wz[1][k];
+    const double nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
+    const double l1 = e1x * e1x + e1y * e1y + e1z * e1z, l2 = e2x * e2x + e2y * e2y + e2z * e2z,
+                 l3 = e3x * e3x + e3y * e3y + e3z * e3z;
+    const double edge2 = l1 > l2 ? (l1 > l3 ? l1 : l3) : (l2 > l3 ? l2 : l3);
+    const double incidence = std::abs(nx * wx[0][k] + ny * wy[0][k] + nz * wz[0][k]);
+    const double kappa = edge2 * far / incidence;
+    double spread = 1.0, amin = a[0], amax = a[0], bmin = b[0], bmax = b[0];
+    for (int i = 0; i < 3; ++i) {
+      const double s = 1.0 + std::abs(a[i]) + std::abs(b[i]);
+      spread = spread > s ? spread : s;
+      amin = amin < a[i] ? amin : a[i];
+      amax = amax > a[i] ? amax : a[i];
+      bmin = bmin < b[i] ? bmin : b[i];
+      bmax = bmax > b[i] ? bmax : b[i];
+    }
+    const double margin = error_factor * 0x1p-24 * kappa * (far / z_min) * spread * spread;
+    // Not in front, or edge-on or degenerate (a margin of 1 or more, infinite or NaN).
+    cullable[k] = in_front && margin < 1.0;
+    lo_a[k] = amin - margin;
+    hi_a[k] = amax + margin;
+    lo_b[k] = bmin - margin;
+    hi_b[k] = bmax + margin;
   }
-  const double far = std::sqrt(far2);
-  for (int i = 0; i < 3; ++i) {
-    const double z = glm::dot(w[i], f);
-    if (!(z > kCullMinDepth * far)) return kUnculled;
-    z_min = std::min(z_min, z);
-    const double inv_z = 1.0 / z;  // a double rounding more: nothing beside the margin
-    a[i] = glm::dot(w[i], r) * inv_z;
-    b[i] = glm::dot(w[i], u) * inv_z;
+  for (int k = 0; k < count; ++k) {
+    amin_out[k] = cullable[k] ? floatBelow(lo_a[k]) : kUnculled.amin;
+    amax_out[k] = cullable[k] ? floatAbove(hi_a[k]) : kUnculled.amax;
+    bmin_out[k] = cullable[k] ? floatBelow(lo_b[k]) : kUnculled.bmin;
+    bmax_out[k] = cullable[k] ? floatAbove(hi_b[k]) : kUnculled.bmax;
   }
-  const glm::dvec3 e1 = v[1] - v[0], e2 = v[2] - v[0], e3 = v[2] - v[1];
-  const glm::dvec3 n = glm::cross(e1, e2);
-  const double edge2 = std::max({glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3)});
-  const double incidence = std::abs(glm::dot(n, w[0]));
-  const double kappa = edge2 * far / incidence;
-  double spread = 1.0;
-  for (int i = 0; i < 3; ++i) spread = std::max(spread, 1.0 + std::abs(a[i]) + std::abs(b[i]));
-  const double margin = error_factor * 0x1p-24 * kappa * (far / z_min) * spread * spread;
-  if (!(margin < 1.0)) return kUnculled;  // also NaN/inf: edge-on or degenerate
-  return CullBox{floatBelow(std::min({a[0], a[1], a[2]}) - margin),
-                 floatAbove(std::max({a[0], a[1], a[2]}) + margin),
-                 floatBelow(std::min({b[0], b[1], b[2]}) - margin),
-                 floatAbove(std::max({b[0], b[1], b[2]}) + margin)};
+}
+
+// boxesOfBlock over all `triangles`, in parallel, into planes of `stride` floats from
+// `planes` on.
+void boxPlanes(const GrCullFrame& frame, const glm::vec3& origin,
+               const std::vector<GrTriangle>& triangles, double error_factor, float* planes,
+               size_t stride) {
+  const glm::dvec3 o(origin);
+  const size_t n = triangles.size();
+  parallelFor(size_t(0), (n + kCullBlock - 1) / kCullBlock, [&](size_t block) {
+    const size_t first = block * kCullBlock;
+    float* at = planes + first;
+    boxesOfBlock(frame, o, triangles.data() + first, int(std::min<size_t>(kCullBlock, n - first)),
+                 error_factor, at, at + stride, at + 2 * stride, at + 3 * stride);
+  });
 }
 
 }  // namespace
@@ -80,31 +145,26 @@ void cullCoordinates(const GrCullFrame& c, float dx, float dy, float dz, float& 
 void computeCullBoxes(const GrCullFrame& frame, const glm::vec3& origin,
                       const std::vector<GrTriangle>& triangles, std::vector<CullBox>& boxes,
                       double error_factor) {
-  reserveFaultedIn(boxes, triangles.size());  // fresh memory: on every core (prefault.h)
-  boxes.resize(triangles.size());
-  const glm::dvec3 o(origin);
-  parallelFor(0LL, (long long)(triangles.size()), [&](long long k) {
-    glm::dvec3 v[3];
-    triangleVertices(triangles[k], v);
-    boxes[k] = boxOf(frame, o, v, error_factor);
-  });
+  const size_t n = triangles.size();
+  std::vector<float> planes(4 * n);
+  boxPlanes(frame, origin, triangles, error_factor, planes.data(), n);
+  boxes.resize(n);
+  for (size_t k = 0; k < n; ++k)
+    boxes[k] = CullBox{planes[k], planes[n + k], planes[2 * n + k], planes[3 * n + k]};
 }
 
 bool CullPlaneCache::update(const GrCullFrame& frame, const glm::vec3& origin,
                             const std::vector<GrTriangle>& triangles) {
-  if (valid_ && std::memcmp(&frame, &frame_, sizeof frame) == 0 && origin == origin_ &&
-      boxes_.size() == triangles.size())
-    return false;
-  computeCullBoxes(frame, origin, triangles, boxes_);
   const size_t stride = triangles.size() + kCullPlanePadding;
-  reserveFaultedIn(planes_, 4 * stride);
-  planes_.assign(4 * stride, 0.0f);
-  parallelFor(0LL, (long long)(boxes_.size()), [&](long long i) {
-    planes_[i] = boxes_[i].amin;
-    planes_[stride + i] = boxes_[i].amax;
-    planes_[2 * stride + i] = boxes_[i].bmin;
-    planes_[3 * stride + i] = boxes_[i].bmax;
-  });
+  if (valid_ && std::memcmp(&frame, &frame_, sizeof frame) == 0 && origin == origin_ &&
+      planes_.size() == 4 * stride)
+    return false;
+  // Sized (and the padding zeroed) once; then every box is written over.
+  if (planes_.size() != 4 * stride) {
+    reserveFaultedIn(planes_, 4 * stride);  // fresh memory: on every core (prefault.h)
+    planes_.assign(4 * stride, 0.0f);
+  }
+  boxPlanes(frame, origin, triangles, kCullErrorFactor, planes_.data(), stride);
   frame_ = frame;
   origin_ = origin;
   valid_ = true;

@@ -79,7 +79,6 @@ class CullPlaneCache {
   bool valid_ = false;
   GrCullFrame frame_{};
   glm::vec3 origin_{0.0f};
-  std::vector<CullBox> boxes_;
   std::vector<float> planes_;
 };
 
