@@ -71,18 +71,17 @@ std::vector<float> axisPlanes(float lo, float hi, int r) {
   return p;
 }
 
-// A grid over the box [lo, hi] for the triangles at positions `ids` of `base` (increasing,
-// all overlapping the box grown by m), its cells' leaves and grids below them appended to
-// `tree` in cell order (the grids below built in parallel, then appended in that order, so
-// the numbering is the same on any number of threads); returns the node's local index, or
-// -1 when the resolution is one cell (the box stays a leaf).
-int buildNode(const float lo[3], const float hi[3], const GrTriangle* base,
-              const std::vector<int>& ids, int depth, double m, float density, int max_leaf,
-              Subtree& tree) {
+// A grid over the box [lo, hi] for the triangles at positions ids[0 .. id_count) of
+// `base` (increasing, all overlapping the box grown by m), its cells' leaves and grids
+// below them appended to `tree` in cell order (the grids below built in parallel, then
+// appended in that order, so the numbering is the same on any number of threads); returns
+// the node's local index, or -1 when the resolution is one cell (the box stays a leaf).
+int buildNode(const float lo[3], const float hi[3], const GrTriangle* base, const int* ids,
+              size_t id_count, int depth, double m, float density, int max_leaf, Subtree& tree) {
   Bounds box;
   box.lo = glm::vec3(lo[0], lo[1], lo[2]);
   box.hi = glm::vec3(hi[0], hi[1], hi[2]);
-  glm::ivec3 want = autoGridResolution(box, ids.size(), density);
+  glm::ivec3 want = autoGridResolution(box, id_count, density);
   for (int a = 0; a < 3; ++a) {  // cells of at least kMinCellMargins margins
     const double fit = (double(hi[a]) - lo[a]) / (kMinCellMargins * m);
     if (fit < want[a]) want[a] = std::max(1, int(fit));
@@ -113,13 +112,13 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base,
     int triangle;
   };
   const AxisCells axis_cells[3] = {{planes[0], m}, {planes[1], m}, {planes[2], m}};
-  const int slices = ids.size() >= kParallelNodeTriangles ? parallelSliceCount() : 1;
+  const int slices = id_count >= kParallelNodeTriangles ? parallelSliceCount() : 1;
   std::vector<std::vector<CellRef>> refs(slices);
   parallelSlices(slices, [&](int me, int count) {
     // Grown in a vector of the slice's own: pushing into refs[me] rewrote its end pointer,
     // on a cache line the other slices' vectors share, for every reference.
     std::vector<CellRef> mine;
-    const auto [t_begin, t_end] = sliceRange(ids.size(), me, count);
+    const auto [t_begin, t_end] = sliceRange(id_count, me, count);
     for (size_t t = t_begin; t < t_end; ++t) {
       glm::dvec3 v[3];
       triangleVertices(base[ids[t]], v);
@@ -170,8 +169,8 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base,
   parallelForDynamic(size_t(0), full.size(), size_t(1), [&](size_t k) {
     float clo[3], chi[3];
     cellBox(full[k], clo, chi);
-    split[k] =
-        buildNode(clo, chi, base, in[full[k]], depth + 1, m, density, max_leaf, below[k]) >= 0;
+    split[k] = buildNode(clo, chi, base, in[full[k]].data(), in[full[k]].size(), depth + 1, m,
+                         density, max_leaf, below[k]) >= 0;
   });
   for (int c = 0, k = 0; c < cells; ++c) {
     if (in[c].empty()) continue;
@@ -246,9 +245,9 @@ UniformGrid adaptiveGridOver(const UniformBins& top, const std::vector<GrTriangl
     const glm::ivec3 v = voxelCoordsIn(g, top.voxel_of_pe[pe]);
     const float lo[3] = {plane(0, v.x), plane(1, v.y), plane(2, v.z)};
     const float hi[3] = {plane(0, v.x + 1), plane(1, v.y + 1), plane(2, v.z + 1)};
-    const std::vector<int> ids(topPositions(pe), topPositions(pe + 1));
-    split[pe] = buildNode(lo, hi, triangles.data(), ids, 1, top.margin, settings.density,
-                          settings.max_leaf_triangles, trees[pe]) >= 0;
+    split[pe] =
+        buildNode(lo, hi, triangles.data(), topPositions(pe), size_t(top.triangleCountOfPe(pe)), 1,
+                  top.margin, settings.density, settings.max_leaf_triangles, trees[pe]) >= 0;
   });
 
   UniformGrid grid;
