@@ -10,6 +10,7 @@
 #include "prefault.h"
 #include "prepared_triangles.h"
 #include "triangle_box_overlap.h"
+#include "triangle_gather.h"
 
 namespace gridrt {
 
@@ -120,6 +121,8 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base, cons
     std::vector<CellRef> mine;
     const auto [t_begin, t_end] = sliceRange(id_count, me, count);
     for (size_t t = t_begin; t < t_end; ++t) {
+      if (t + kTrianglePrefetchAhead < t_end)
+        prefetchTriangle(base, ids[t + kTrianglePrefetchAhead]);
       glm::dvec3 v[3];
       triangleVertices(base[ids[t]], v);
       const glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2]));
@@ -349,8 +352,8 @@ UniformGrid adaptiveGridOver(const UniformBins& top, const std::vector<GrTriangl
   parallelForDynamic(int(0), grid.peCount(), int(64), [&](int pe) {
     const int* from = pe < merged_pes ? merged_positions.data() + grid.pe_tri_begin[pe]
                                       : leaves[pe - merged_pes]->triangles.data();
-    GrTriangle* out = grid.pe_triangles.data() + grid.pe_tri_begin[pe];
-    for (int k = 0, n = grid.triangleCountOfPe(pe); k < n; ++k) out[k] = triangles[from[k]];
+    gatherTriangles(triangles.data(), from, size_t(grid.triangleCountOfPe(pe)),
+                    grid.pe_triangles.data() + grid.pe_tri_begin[pe]);
   });
   trees = {};
   grid.info.pe_count = grid.peCount();

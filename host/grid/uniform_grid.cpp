@@ -9,6 +9,7 @@
 #include "prefault.h"
 #include "prepared_triangles.h"
 #include "triangle_box_overlap.h"
+#include "triangle_gather.h"
 
 namespace gridrt {
 
@@ -209,8 +210,11 @@ UniformGrid uniformGridOf(UniformBins&& bins, const std::vector<GrTriangle>& tri
   grid.pe_tri_begin = std::move(bins.pe_tri_begin);
   reserveFaultedIn(grid.pe_triangles, bins.positions.size());  // on every core (prefault.h)
   grid.pe_triangles.resize(bins.positions.size());
-  parallelFor(size_t(0), bins.positions.size(),
-              [&](size_t k) { grid.pe_triangles[k] = triangles[bins.positions[k]]; });
+  parallelSlices(parallelSliceCount(), [&](int me, int count) {
+    const auto [first, last] = sliceRange(bins.positions.size(), me, count);
+    gatherTriangles(triangles.data(), bins.positions.data() + first, last - first,
+                    grid.pe_triangles.data() + first);
+  });
   bins.positions = {};
   std::vector<float> boxes(size_t(grid.peCount()) * 6);  // voxelBoxOfPe from the voxels
   for (int pe = 0; pe < grid.peCount(); ++pe) {
