@@ -279,6 +279,56 @@ TEST(UniformGrid, ListsDoNotDependOnTheThreadCount) {
     ASSERT_EQ(one.pe_triangles[i].prim, seven.pe_triangles[i].prim) << i;
 }
 
+// AxisCells::range against its definition by a scan of every cell: first is the lowest
+// cell whose grown upper face reaches lo, last the highest whose grown lower face is at or
+// below hi (both widened by the slack), on uneven planes and on values at, just beside and
+// far beyond the planes, where a shortcut would pick a neighbouring cell.
+TEST(AxisCells, RangeEqualsAScanOfEveryCell) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int cells = 1 + int(unit(rng) * 40);
+    std::vector<float> planes(size_t(cells) + 1);
+    planes[0] = float(-5.0 + 10.0 * unit(rng));
+    for (int k = 1; k <= cells; ++k)  // about even, some cells twice or half the mean
+      planes[k] = planes[k - 1] + float(0.5 + 1.5 * unit(rng));
+    const double m = trial % 3 == 0 ? 0.0 : 1e-3 * unit(rng);
+    const AxisCells axis(planes, m);
+    const double slack = 1e-9 * ((double(planes[cells]) - planes[0]) / cells);
+    // A value whose reach (x -/+ m -/+ slack, as range rounds it) lands exactly on p.
+    auto reachingExactly = [&](double p, bool as_lo) {
+      double x = as_lo ? p + m + slack : p - m - slack;
+      for (int step = 0; step < 64; ++step) {
+        const double reach = as_lo ? x - m - slack : x + m + slack;
+        if (reach == p) return x;
+        x = std::nextafter(x, reach < p ? INFINITY : -INFINITY);
+      }
+      return x;  // none found: an ordinary value near p
+    };
+    for (int q = 0; q < 200; ++q) {
+      auto value = [&](bool as_lo) {
+        const double pick = unit(rng);
+        const double p = planes[size_t(unit(rng) * (cells + 1)) % (cells + 1)];
+        if (pick < 0.15) return reachingExactly(p, as_lo);                 // the reach on a plane
+        if (pick < 0.3) return p;                                          // on a plane
+        if (pick < 0.6) return p + (unit(rng) - 0.5) * 4.0 * (m + slack);  // beside one
+        return double(planes[0]) - 3.0 + (double(planes[cells]) - planes[0] + 6.0) * unit(rng);
+      };
+      double lo = value(true), hi = value(false);
+      if (lo > hi) std::swap(lo, hi);
+      int want_first = cells - 1, want_last = 0;
+      for (int i = cells - 1; i >= 0; --i)
+        if (double(planes[i + 1]) >= lo - m - slack) want_first = i;
+      for (int i = 0; i < cells; ++i)
+        if (double(planes[i]) <= hi + m + slack) want_last = i;
+      int first = -1, last = -1;
+      axis.range(lo, hi, first, last);
+      ASSERT_EQ(first, want_first) << "trial " << trial << " lo " << lo << " hi " << hi;
+      ASSERT_EQ(last, want_last) << "trial " << trial << " lo " << lo << " hi " << hi;
+    }
+  }
+}
+
 TEST(UniformGrid, VoxelCoordsInvertsTheLinearIndex) {
   Scene scene = sceneOf(randomSoup(4, 20, {0, 0, 0}, {1, 1, 1}));
   UniformGrid g = buildUniformGrid(prepareTriangles(scene), sceneBounds(scene), fixedDims(7, 5, 3));
