@@ -4,6 +4,8 @@
 #include <istream>
 #include <vector>
 
+#include "prefault.h"
+
 namespace gridrt {
 
 // Replaces `out` with every byte `in` still holds, read in blocks of
@@ -13,8 +15,25 @@ inline bool readStreamBytes(std::istream& in, std::vector<unsigned char>& out) {
   constexpr size_t kBlock = size_t(1) << 20;
   out.clear();
   size_t size = 0;
+  // A file says how much it holds: read that in one go into memory faulted in on every
+  // core (growing by doubling had copied and zeroed 2-3 times a 93 MB scene, 250 ms).
+  if (const std::streampos here = in.tellg(); here != std::streampos(-1)) {
+    in.seekg(0, std::ios::end);
+    const std::streampos end = in.tellg();
+    in.seekg(here);
+    if (in && end != std::streampos(-1) && end > here) {
+      const size_t expected = size_t(end - here);
+      reserveFaultedIn(out, expected + kBlock);
+      out.resize(expected);
+      in.read(reinterpret_cast<char*>(out.data()), std::streamsize(expected));
+      size = size_t(in.gcount());
+    }
+    in.clear(in.rdstate() & ~std::ios::failbit);  // a pipe cannot seek: read it in blocks
+  }
   while (in) {
-    if (out.size() < size + kBlock) out.resize(std::max(2 * out.size(), size + kBlock));
+    const size_t want = size + kBlock;  // within the capacity a file's size reserved
+    if (out.size() < want)
+      out.resize(want <= out.capacity() ? want : std::max(2 * out.size(), want));
     in.read(reinterpret_cast<char*>(out.data() + size), std::streamsize(kBlock));
     size += size_t(in.gcount());
   }

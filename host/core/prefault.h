@@ -6,6 +6,7 @@
 // one core, 12 ms on two (2 cores, AMD EPYC, KVM, 2026-12-03). Elsewhere, or on an older
 // kernel, nothing happens and the writes fault as before.
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -52,6 +53,14 @@ void reserveFaultedIn(std::vector<T>& v, size_t n) {
   fresh.reserve(n);
   prefaultForWriting(fresh.data(), n * sizeof(T));
   v.swap(fresh);
+}
+
+// Room for `more` elements after v's, faulted in on every core: for a vector about to grow
+// by that much (capacity at least doubles, so growing piece by piece stays linear).
+template <typename T>
+void reserveMoreFaultedIn(std::vector<T>& v, size_t more) {
+  if (v.size() + more > v.capacity()) v.reserve(std::max(v.size() + more, 2 * v.capacity()));
+  prefaultForWriting(v.data() + v.size(), more * sizeof(T));
 }
 
 }  // namespace gridrt

@@ -28,6 +28,8 @@
 #include "gltf_meshopt.h"
 #include "gltf_textures.h"
 #include "gltf_vertex_attributes.h"
+#include "mapped_file.h"
+#include "prefault.h"
 #include "scene_triangles.h"
 
 namespace gridrt {
@@ -758,17 +760,17 @@ class SceneBuilder {
     return data;
   }
 
-  // Adds the weighted morph-target displacements of `attribute` to `values`.
+  // Adds the weighted morph-target displacements of `attribute` to `data` (VEC3).
   void applyMorphTargets(const tinygltf::Primitive& prim, const std::vector<double>& weights,
-                         const char* attribute, std::vector<glm::dvec3>& values,
+                         const char* attribute, gltf::AccessorData& data,
                          const std::string& where) const {
     for (size_t t = 0; t < prim.targets.size() && t < weights.size(); ++t) {
       auto it = prim.targets[t].find(attribute);
       if (it == prim.targets[t].end() || weights[t] == 0.0) continue;
       const std::string what = "morph target " + std::to_string(t) + " " + attribute;
-      const gltf::AccessorData delta = perVertex(it->second, what, values.size(), where);
+      const gltf::AccessorData delta = perVertex(it->second, what, data.count, where);
       if (delta.type != TINYGLTF_TYPE_VEC3) fail(label_, where + ": " + what + " must be VEC3");
-      for (size_t i = 0; i < values.size(); ++i) values[i] += weights[t] * delta.vec3(i);
+      for (size_t i = 0; i < 3 * data.count; ++i) data.values[i] += weights[t] * delta.values[i];
     }
   }
 
@@ -842,20 +844,17 @@ class SceneBuilder {
       ++scene_.skipped_primitives;
       return;
     }
-    const gltf::AccessorData position_data =
-        readVec3(model_, position_index, "POSITION", quantized_, label_);
-    const size_t vertex_count = position_data.count;
-    std::vector<glm::dvec3> positions(vertex_count);
-    for (size_t i = 0; i < vertex_count; ++i) positions[i] = position_data.vec3(i);
-    std::optional<std::vector<glm::dvec3>> normals;
+    // Used where they were read (no copy: a mesh of millions of vertices had spent a sixth
+    // of its load copying them).
+    gltf::AccessorData positions = readVec3(model_, position_index, "POSITION", quantized_, label_);
+    const size_t vertex_count = positions.count;
+    std::optional<gltf::AccessorData> normals;
     if (int n = attribute(prim, "NORMAL"); n >= 0) {
-      const gltf::AccessorData normal_data = readVec3(model_, n, "NORMAL", quantized_, label_);
-      if (normal_data.count != vertex_count)
+      normals = readVec3(model_, n, "NORMAL", quantized_, label_);
+      if (normals->count != vertex_count)
         fail(label_, "accessor " + std::to_string(n) + ": NORMAL count " +
-                         std::to_string(normal_data.count) + " differs from POSITION count " +
+                         std::to_string(normals->count) + " differs from POSITION count " +
                          std::to_string(vertex_count));
-      normals.emplace(vertex_count);
-      for (size_t i = 0; i < vertex_count; ++i) (*normals)[i] = normal_data.vec3(i);
     }
     const gltf::VertexAttributes extras =
         gltf::readVertexAttributes(model_, prim, vertex_count, quantized_, where, label_);
@@ -870,17 +869,23 @@ class SceneBuilder {
                 : std::vector<glm::dmat4>();
     const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(world)));
     const bool node_mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
+    // The scene's arrays grown once for the whole primitive (pushing into them had regrown
+    // and faulted in tens of MB piece by piece on one core).
+    reserveMoreFaultedIn(scene_.positions, indices.size());
+    reserveMoreFaultedIn(scene_.normals, indices.size());
+    reserveMoreFaultedIn(scene_.material_of, indices.size() / 3);
 
     for (size_t t = 0; t < indices.size(); t += 3) {
       glm::vec3 p[3], n[3];
       for (int k = 0; k < 3; ++k) {
         const size_t vertex = indices[t + size_t(k)];
         const glm::dmat4& m = skinned ? skin[vertex] : world;
-        p[k] = glm::vec3(transformPoint(m, positions[vertex]));
+        p[k] = glm::vec3(transformPoint(m, positions.vec3(vertex)));
         const glm::dmat3 to_world =
             skinned ? glm::transpose(glm::inverse(glm::dmat3(m))) : normal_matrix;
         // Zero marks "no usable normal" (absent, zero or NaN in the file).
-        n[k] = normals ? unitOr(to_world * (*normals)[vertex], glm::vec3(0.0f)) : glm::vec3(0.0f);
+        n[k] =
+            normals ? unitOr(to_world * normals->vec3(vertex), glm::vec3(0.0f)) : glm::vec3(0.0f);
       }
       // A skinned triangle mirrors where its first vertex's skin matrix does.
       const bool mirrored =
@@ -985,14 +990,11 @@ class SceneBuilder {
   throw SceneError(oneLine("cannot open scene '" + path + "': " + reason));
 }
 
-std::vector<unsigned char> readSceneFile(const std::string& path) {
+void openSceneFile(const std::string& path, MappedFile& file) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) cannotOpen(path, "is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) cannotOpen(path, std::strerror(errno));
-  std::vector<unsigned char> bytes;
-  if (!readStreamBytes(in, bytes)) cannotOpen(path, "read error");
-  return bytes;
+  std::string error;
+  if (!file.open(path, error)) cannotOpen(path, error);
 }
 
 }  // namespace
@@ -1023,7 +1025,8 @@ Scene GltfDocument::flatten(const GltfLoadOptions& options, const ScenePose* pos
 }
 
 GltfDocument GltfDocument::fromFile(const std::string& path) {
-  const std::vector<unsigned char> bytes = readSceneFile(path);
+  MappedFile bytes;
+  openSceneFile(path, bytes);
 
   // A .glb must carry the magic; anything else is sniffed by loadGltfFromMemory.
   std::string ext = fs::path(path).extension().string();

@@ -1,4 +1,5 @@
-// readStreamBytes: every byte of a stream, whatever its size against the 1 MiB blocks.
+// readStreamBytes: every byte of a stream, whatever its size against the 1 MiB blocks, from
+// where it stands, seekable or not.
 #include "file_bytes.h"
 
 #include <gtest/gtest.h>
@@ -22,6 +23,36 @@ TEST(FileBytes, ReadsEveryByteWhateverTheSizeAgainstTheBlocks) {
       return a == (unsigned char)(b);
     })) << size;
   }
+}
+
+TEST(FileBytes, ReadsTheRestOfAStreamAlreadyPartlyRead) {
+  std::istringstream in("header:the rest of it");
+  std::string header(7, '\0');
+  in.read(header.data(), 7);
+  std::vector<unsigned char> bytes;
+  ASSERT_TRUE(readStreamBytes(in, bytes));
+  EXPECT_EQ(std::string(bytes.begin(), bytes.end()), "the rest of it");
+}
+
+// A stream that can only be read forward, as a pipe: tellg fails, the blocks take over.
+class ForwardOnlyBuffer : public std::streambuf {
+ public:
+  explicit ForwardOnlyBuffer(std::string text) : text_(std::move(text)) {
+    setg(text_.data(), text_.data(), text_.data() + text_.size());
+  }
+
+ private:
+  std::string text_;
+};
+
+TEST(FileBytes, ReadsAStreamThatCannotSeek) {
+  const std::string text(3 * (size_t(1) << 20) + 11, 'x');
+  ForwardOnlyBuffer buffer(text);
+  std::istream in(&buffer);
+  ASSERT_EQ(in.tellg(), std::streampos(-1));
+  std::vector<unsigned char> bytes;
+  ASSERT_TRUE(readStreamBytes(in, bytes));
+  EXPECT_EQ(bytes.size(), text.size());
 }
 
 TEST(FileBytes, AReadErrorIsReported) {
