@@ -102,10 +102,11 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
   pe_tri_begin_.uploadNow(rt_, grid.pe_tri_begin);
   pe_box_.uploadNow(rt_, grid.pe_hull.empty() ? grid.pe_box : grid.pe_hull);
   pe_triangles_.uploadNow(rt_, grid.pe_triangles);
-  std::vector<float> seg_planes;
-  computeSegmentCullPlanes(grid.pe_triangles, seg_planes);
-  seg_planes_.uploadNow(rt_, seg_planes);
-  seg_stride_ = int(seg_planes.size() / GR_SEG_PLANES);
+  const size_t seg_stride = grid.pe_triangles.size() + kSegmentCullPlanePadding;
+  seg_planes_.fillMapped(rt_, GR_SEG_PLANES * seg_stride, [&](float* planes) {
+    writeSegmentCullPlanes(grid.pe_triangles.data(), grid.pe_triangles.size(), planes);
+  });
+  seg_stride_ = int(seg_stride);
   rays_per_pe_.assign(grid.peCount(), 0);
   tests_per_pe_.assign(grid.peCount(), 0);
   const DeviceInfo& device = rt_.info();

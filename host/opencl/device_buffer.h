@@ -46,6 +46,22 @@ class DeviceBuffer {
     return buffer_;
   }
 
+  // Blocking: makes room for `count` elements and calls fill(T*) on the buffer's memory
+  // mapped for writing, its old contents dropped (on a CPU device the buffer itself: no
+  // staging copy of tens of megabytes).
+  template <typename Fill>
+  cl::Buffer& fillMapped(ClRuntime& rt, size_t count, const Fill& fill) {
+    reserve(rt, count);
+    if (!count) return buffer_;
+    T* data = static_cast<T*>(rt.queue().enqueueMapBuffer(
+        buffer_, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, count * sizeof(T)));
+    fill(data);
+    cl::Event done;
+    rt.queue().enqueueUnmapMemObject(buffer_, data, nullptr, &done);
+    done.wait();
+    return buffer_;
+  }
+
   void download(ClRuntime& rt, T* data, size_t count) {
     if (count) rt.queue().enqueueReadBuffer(buffer_, CL_TRUE, 0, count * sizeof(T), data);
   }

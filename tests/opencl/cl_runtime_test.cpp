@@ -1,6 +1,7 @@
 // ClRuntime::runAndWait: the commands `enqueue` queues have all run when it
 // returns, from any host thread count, and an exception from `enqueue` comes out of it
-// (a throw that left the parallel region inside would end the process).
+// (a throw that left the parallel region inside would end the process). DeviceBuffer's
+// mapped fill.
 #include "cl_runtime.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <numeric>
 #include <vector>
 
+#include "device_buffer.h"
 #include "errors.h"
 #include "parallel_loops.h"
 
@@ -29,6 +31,21 @@ TEST(ClRuntime, CommandsHaveRunWhenItReturns) {
       rt.queue().enqueueReadBuffer(buffer, CL_FALSE, 0, n * sizeof(int), back.data());
     });
     EXPECT_EQ(back, source) << threads << " threads";
+  }
+}
+
+// DeviceBuffer::fillMapped: what the fill writes is what the device holds, also when the
+// buffer grows for a second, larger fill.
+TEST(DeviceBuffer, FillMappedHoldsWhatWasWritten) {
+  ClRuntime rt("");
+  gridrt::DeviceBuffer<int> buffer("test values", CL_MEM_READ_ONLY);
+  for (size_t n : {size_t(1000), size_t(3) << 20}) {
+    buffer.fillMapped(rt, n, [&](int* data) {
+      for (size_t k = 0; k < n; ++k) data[k] = int(k * 7 + n);
+    });
+    std::vector<int> back(n, -1);
+    buffer.download(rt, back.data(), n);
+    for (size_t k = 0; k < n; ++k) ASSERT_EQ(back[k], int(k * 7 + n)) << k << " of " << n;
   }
 }
 

@@ -39,6 +39,9 @@ constexpr size_t kSegmentCullPlanePadding = GR_PACKET_LANES;
 // The planes for `triangles` (the PE triangles, MT edges or watertight vertices), each
 // stride = triangles + kSegmentCullPlanePadding floats long.
 void computeSegmentCullPlanes(const std::vector<GrTriangle>& triangles, std::vector<float>& planes);
+// The same planes written to `planes` (GR_SEG_PLANES * (count + kSegmentCullPlanePadding)
+// floats, the padding zeroed), on all cores: straight into a mapped device buffer.
+void writeSegmentCullPlanes(const GrTriangle* triangles, size_t count, float* planes);
 
 // The margin M for one ray (o, d) whose hit may lie at parameters up to |t_hi|, computed
 // from the planes of triangle `index` as the kernel does, in double; +infinity where the

@@ -104,6 +104,32 @@ TEST(SegmentCulling, MarginCoversTheTestsRounding) {
   }
 }
 
+// The planes of many triangles, written in slices on all cores, equal each triangle's own
+// planes computed alone, and the padding after each plane is zero.
+TEST(SegmentCulling, PlanesOfManyTrianglesEqualEachTrianglesOwn) {
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::vector<GrTriangle> tris;
+  for (int k = 0; k < 5003; ++k) {
+    glm::vec3 v[3];
+    for (glm::vec3& x : v) x = glm::vec3(unit(rng), unit(rng), unit(rng)) * 10.0f;
+    tris.push_back(prepareTriangle(v, k, KernelOptions{k % 2 == 0}));
+  }
+  std::vector<float> planes;
+  computeSegmentCullPlanes(tris, planes);
+  const size_t stride = tris.size() + kSegmentCullPlanePadding;
+  ASSERT_EQ(planes.size(), GR_SEG_PLANES * stride);
+  for (size_t i = 0; i < tris.size(); ++i) {
+    std::vector<float> own;
+    computeSegmentCullPlanes({tris[i]}, own);
+    for (int p = 0; p < GR_SEG_PLANES; ++p)
+      ASSERT_EQ(planes[p * stride + i], own[p * (1 + kSegmentCullPlanePadding)])
+          << "triangle " << i << " plane " << p;
+  }
+  for (int p = 0; p < GR_SEG_PLANES; ++p)
+    for (size_t i = tris.size(); i < stride; ++i) ASSERT_EQ(planes[p * stride + i], 0.0f);
+}
+
 TEST(SegmentCulling, GrazingRaysAndSliversAreNeverCulled) {
   auto planesOf = [](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
     const glm::vec3 v[3] = {a, b, c};
