@@ -101,7 +101,13 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
   checkTriangleLayout(grid.pe_triangles, kernel_options);
   pe_tri_begin_.uploadNow(rt_, grid.pe_tri_begin);
   pe_box_.uploadNow(rt_, grid.pe_hull.empty() ? grid.pe_box : grid.pe_hull);
-  pe_triangles_.uploadNow(rt_, grid.pe_triangles);
+  // Copied on all cores into the mapped buffer (tens of MB on a large scene).
+  pe_triangles_.fillMapped(rt_, grid.pe_triangles.size(), [&](GrTriangle* out) {
+    parallelSlices(parallelSliceCount(), [&](int me, int slices) {
+      const auto [first, last] = sliceRange(grid.pe_triangles.size(), me, slices);
+      std::copy(grid.pe_triangles.begin() + first, grid.pe_triangles.begin() + last, out + first);
+    });
+  });
   const size_t seg_stride = grid.pe_triangles.size() + kSegmentCullPlanePadding;
   seg_planes_.fillMapped(rt_, GR_SEG_PLANES * seg_stride, [&](float* planes) {
     writeSegmentCullPlanes(grid.pe_triangles.data(), grid.pe_triangles.size(), planes);
