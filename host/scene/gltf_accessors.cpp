@@ -195,24 +195,24 @@ void readElementsOf(const unsigned char* data, size_t stride, size_t count, int 
 
 void readElements(const unsigned char* data, size_t stride, size_t count, int components,
                   int component_type, bool normalized, double* out) {
+  auto read = [&](auto type) {
+    readElementsOf<decltype(type)>(data, stride, count, components, component_type, normalized,
+                                   out);
+  };
   switch (component_type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-      return readElementsOf<int8_t>(data, stride, count, components, component_type, normalized,
-                                    out);
+      return read(int8_t{});
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return readElementsOf<uint8_t>(data, stride, count, components, component_type, normalized,
-                                     out);
+      return read(uint8_t{});
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-      return readElementsOf<int16_t>(data, stride, count, components, component_type, normalized,
-                                     out);
+      return read(int16_t{});
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return readElementsOf<uint16_t>(data, stride, count, components, component_type, normalized,
-                                      out);
+      return read(uint16_t{});
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-      return readElementsOf<uint32_t>(data, stride, count, components, component_type, normalized,
-                                      out);
+      return read(uint32_t{});
     default:  // FLOAT (componentSize refused the rest), never normalized
-      return readElementsOf<float>(data, stride, count, components, component_type, false, out);
+      normalized = false;
+      return read(float{});
   }
 }
 
