@@ -28,7 +28,7 @@ inline bool readStreamBytes(std::istream& in, std::vector<unsigned char>& out) {
       in.read(reinterpret_cast<char*>(out.data()), std::streamsize(expected));
       size = size_t(in.gcount());
     }
-    in.clear(in.rdstate() & ~std::ios::failbit);  // a pipe cannot seek: read it in blocks
+    in.clear(in.rdstate() & ~std::ios::failbit);  // told but could not seek: read in blocks
   }
   while (in) {
     const size_t want = size + kBlock;  // within the capacity a file's size reserved
