@@ -9,7 +9,7 @@
 #include "pe_hulls.h"
 #include "prefault.h"
 #include "prepared_triangles.h"
-#include "triangle_box_overlap.h"
+#include "triangle_cells.h"
 #include "triangle_gather.h"
 
 namespace gridrt {
@@ -125,26 +125,10 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base, cons
         prefetchTriangle(base, ids[t + kTrianglePrefetchAhead]);
       glm::dvec3 v[3];
       triangleVertices(base[ids[t]], v);
-      const glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2]));
-      const glm::dvec3 thi = glm::max(v[0], glm::max(v[1], v[2]));
-      int first[3], last[3];
-      for (int a = 0; a < 3; ++a) axis_cells[a].range(tlo[a], thi[a], first[a], last[a]);
-      // A triangle whose bounding box meets one grown cell only: its part inside this box
-      // grown by m (where it overlaps, or it would not be here) lies in that cell, since
-      // the grown cells cover the grown box. No test needed, as in the uniform grid.
-      if (first[0] == last[0] && first[1] == last[1] && first[2] == last[2]) {
-        mine.push_back({first[0] + r[0] * (first[1] + r[1] * first[2]), ids[t]});
-        continue;
-      }
-      const TriangleBoxTest test(v[0], v[1], v[2]);
-      for (int z = first[2]; z <= last[2]; ++z)
-        for (int y = first[1]; y <= last[1]; ++y)
-          for (int x = first[0]; x <= last[0]; ++x) {
-            const glm::dvec3 clo = glm::dvec3(planes[0][x], planes[1][y], planes[2][z]) - m;
-            const glm::dvec3 chi =
-                glm::dvec3(planes[0][x + 1], planes[1][y + 1], planes[2][z + 1]) + m;
-            if (test.overlaps(clo, chi)) mine.push_back({x + r[0] * (y + r[1] * z), ids[t]});
-          }
+      const int id = ids[t];
+      forEachCellOfTriangle(v, axis_cells, planes, m, [&](int x, int y, int z) {
+        mine.push_back({x + r[0] * (y + r[1] * z), id});
+      });
     }
     refs[me] = std::move(mine);
   });

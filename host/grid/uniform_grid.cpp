@@ -8,7 +8,7 @@
 #include "pe_hulls.h"
 #include "prefault.h"
 #include "prepared_triangles.h"
-#include "triangle_box_overlap.h"
+#include "triangle_cells.h"
 #include "triangle_gather.h"
 
 namespace gridrt {
@@ -156,25 +156,9 @@ UniformBins binUniformGrid(const std::vector<GrTriangle>& triangles, const Bound
     for (size_t t = t_begin; t < t_end; ++t) {
       glm::dvec3 v[3];
       triangleVertices(triangles[t], v);
-      glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2]));
-      glm::dvec3 thi = glm::max(v[0], glm::max(v[1], v[2]));
-      int first[3], last[3];
-      for (int a = 0; a < 3; ++a) axis_cells[a].range(tlo[a], thi[a], first[a], last[a]);
-      // A triangle whose bounding box meets one grown voxel only lies inside it (the
-      // grown voxels cover the grid, which contains every triangle): no test needed.
-      if (first[0] == last[0] && first[1] == last[1] && first[2] == last[2]) {
-        mine.push_back({first[0] + n.x * (first[1] + n.y * first[2]), int(t)});
-        continue;
-      }
-      const TriangleBoxTest test(v[0], v[1], v[2]);
-      for (int z = first[2]; z <= last[2]; ++z)
-        for (int y = first[1]; y <= last[1]; ++y)
-          for (int x = first[0]; x <= last[0]; ++x) {
-            const glm::dvec3 cell_lo = glm::dvec3(planes[0][x], planes[1][y], planes[2][z]) - m;
-            const glm::dvec3 cell_hi =
-                glm::dvec3(planes[0][x + 1], planes[1][y + 1], planes[2][z + 1]) + m;
-            if (test.overlaps(cell_lo, cell_hi)) mine.push_back({x + n.x * (y + n.y * z), int(t)});
-          }
+      forEachCellOfTriangle(v, axis_cells, planes, m, [&](int x, int y, int z) {
+        mine.push_back({x + n.x * (y + n.y * z), int(t)});
+      });
     }
     refs[me] = std::move(mine);
   });

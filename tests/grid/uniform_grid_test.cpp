@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "gltf_loader.h"
+#include "grid_dda.h"
 #include "parallel_loops.h"
 #include "prepared_triangles.h"
 #include "scene.h"
@@ -540,6 +541,25 @@ TEST(UniformGrid, TriangleInAVoxelBoundaryPlaneIsListedInBothVoxelsWithoutMargin
   g = twoVoxels({{1.001f, 0.2f, 0.2f}, {1.5f, 0.8f, 0.2f}, {1.5f, 0.5f, 0.8f}}, 0.0, tris);
   EXPECT_TRUE(listedIn(g, 0).empty());
   EXPECT_EQ(listedIn(g, 1), std::vector<int>{0});
+}
+
+// AxisCells::range widens a triangle's reach by a billionth of a cell, so it may name a
+// cell the triangle misses by less than that; the binning decides exactly even where no
+// separating-axis test runs (a triangle crossing cells along one axis only,
+// triangle_cells.h). Near a plane at 0, floats lie that close to it.
+TEST(UniformGrid, TriangleJustPastAPlaneWithinTheRangesSlackIsNotListedBeforeIt) {
+  const float x0 = 1e-10f;  // past the plane at 0 by a tenth of the slack (1e-9 of a cell)
+  const std::vector<glm::vec3> positions = {
+      {x0, 0.2f, 0.2f}, {0.8f, 0.8f, 0.2f}, {0.8f, 0.5f, 0.8f}};
+  const std::vector<GrTriangle> tris = prepareTriangles(sceneOf(positions));
+  Bounds box;
+  box.grow({-1, 0, 0});
+  box.grow({1, 1, 1});
+  const UniformGrid g = buildUniformGrid(tris, box, fixedDims(2, 1, 1, 0.0));
+  ASSERT_EQ(gr_grid_plane(g.info.minx, g.info.cellx, 1), 0.0f);
+  EXPECT_TRUE(listedIn(g, 0).empty());
+  EXPECT_EQ(listedIn(g, 1), std::vector<int>{0});
+  expectExactLists(g, tris);
 }
 
 TEST(UniformGrid, TriangleWithinTheMarginOfANeighbouringVoxelIsListedThere) {
