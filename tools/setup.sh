@@ -20,7 +20,7 @@ done
 PACKAGES=(
   cmake make g++ pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
-  libglm-dev libopenimageio-dev openimageio-tools libtinygltf-dev
+  libglm-dev libopenimageio-dev openimageio-tools libpng-dev libtinygltf-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev libhwy-dev libtbb-dev
   libdraco-dev libmeshoptimizer-dev libassimp-dev
   python3 python3-venv python3-distributed python3-psutil

@@ -12,6 +12,7 @@
 
 #include "errors.h"
 #include "image_module.h"
+#include "png_encoder.h"
 
 namespace gridrt {
 namespace {
@@ -92,7 +93,9 @@ void writeLayeredImage(const std::string& path, const LayeredImage& image, Outpu
   const ImageFormat chosen = validateOutputPath(path, kind, format);
   std::vector<unsigned char> bytes;
   try {
-    bytes = imageCodec().encode(image, formatName(chosen));
+    // PNG, the default output, without the image module's libraries (png_encoder.h).
+    bytes = chosen == ImageFormat::Png ? encodePng(image)
+                                       : imageCodec().encode(image, formatName(chosen));
   } catch (const RenderError& e) {
     failWrite(path, e.what());
   }
