@@ -63,4 +63,20 @@ void reserveMoreFaultedIn(std::vector<T>& v, size_t more) {
   prefaultForWriting(v.data() + v.size(), more * sizeof(T));
 }
 
+// v resized to n elements, the room it lacks allocated with headroom and faulted in on
+// every core before anything is copied or zeroed into it: for the renderer's per-frame
+// arrays, whose first frame otherwise faulted in ~170 MB page by page on one core
+// (the default scene at 640x480).
+template <typename T>
+void resizeFaultedIn(std::vector<T>& v, size_t n) {
+  if (n > v.capacity()) {
+    std::vector<T> fresh;
+    fresh.reserve(std::max(n, 2 * v.capacity()));
+    prefaultForWriting(fresh.data(), n * sizeof(T));
+    fresh.insert(fresh.end(), v.begin(), v.end());
+    v.swap(fresh);
+  }
+  v.resize(n);
+}
+
 }  // namespace gridrt

@@ -9,6 +9,7 @@
 #include "default_lighting.h"
 #include "parallel_loops.h"
 #include "pixel_blocks.h"
+#include "prefault.h"
 #include "prepared_triangles.h"
 #include "stopwatch.h"
 
@@ -125,7 +126,7 @@ void Renderer::traceInBatches(const std::vector<GrRay>& rays, std::vector<GrHit>
   if (rays.size() <= kMaxBatchRays) {
     trace(rays, hits, diagnostics);
   } else {
-    hits.resize(rays.size());
+    resizeFaultedIn(hits, rays.size());
     RayDiagnostics part;
     if (diagnostics) *diagnostics = RayDiagnostics{};
     for (size_t first = 0; first < rays.size(); first += kMaxBatchRays) {
@@ -148,7 +149,7 @@ void Renderer::traceBatched(const std::vector<GrRay>& rays, HitMode mode, std::v
 }
 
 void Renderer::traceShadows(double& ms, uint64_t& see_through_rays) {
-  shadow_hits_.resize(shadow_rays_.size());
+  resizeFaultedIn(shadow_hits_, shadow_rays_.size());
   for (size_t l = 0; l < lights_.size(); ++l) {
     const Light& light = lights_[l];
     // This light's rays (all of them when it is the only light).
@@ -214,7 +215,7 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
   frame.times = FrameTimes{};
   frame.refined_pixels = 0;
   frame.passes = 0;
-  radiance_.resize(pixels);
+  resizeFaultedIn(radiance_, pixels);
   parallelFor(int(0), int(fh), [&](int y) {
     std::fill(radiance_.begin() + size_t(y) * fw, radiance_.begin() + size_t(y + 1) * fw,
               glm::vec3(0.0f));
@@ -337,7 +338,7 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   const size_t rendered = window_pixels_.size();
   // Primary rays: pixel-major, spp samples each (the pixel centre for a lone sample 0).
   // Their own buffers keep their size from frame to frame (no refill with zeros).
-  primary_rays_.resize(rendered * spp);
+  resizeFaultedIn(primary_rays_, rendered * spp);
   const CameraRayGenerator camera_rays(camera_, w, h);
   const bool centre_only = spp == 1 && first_sample == 0;
   // A pinhole camera's pixel centres over a window go through tracePrimary (below), whose
@@ -425,8 +426,8 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
 
   // The shadow rays of every depth in one batch (any hit before the light means it is
   // occluded), then the pass's light into the pixels.
-  shadow_rays_.resize(shadow_total);
-  shadows_.resize(shadow_total);
+  resizeFaultedIn(shadow_rays_, shadow_total);
+  resizeFaultedIn(shadows_, shadow_total);
   frame.rays.shadow += shadow_total;
   if (shadow_total) traceShadows(frame.times.shadow_ms, frame.rays.see_through);
   clock.restart();
@@ -545,7 +546,7 @@ size_t Renderer::shadeHeadlight(int depth, const std::vector<GrRay>& rays, Prima
   Stopwatch clock;
   const size_t n = rays.size();
   Generation& g = generations_[depth];
-  g.radiance.resize(n);
+  resizeFaultedIn(g.radiance, n);
   std::vector<glm::vec3>& local = g.radiance;
   // Null without vertex normals (hit_surfaces.h).
   const ShadingTriangle* smooth_triangles =
@@ -589,7 +590,7 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
   // Each chunk writes its own outputs (Spawned), which keeps the parallel loop free of
   // shared appends; they are concatenated afterwards in chunk order, the shading order.
   Generation& g = generations_[depth];
-  g.radiance.resize(n);
+  resizeFaultedIn(g.radiance, n);
   std::vector<glm::vec3>& local = g.radiance;
   // Null without vertex normals (hit_surfaces.h).
   const ShadingTriangle* smooth_triangles =
@@ -781,8 +782,9 @@ size_t Renderer::concatenateChunks(size_t chunks, std::vector<GrRay> Spawned::*r
   chunk_offsets_.assign(chunks + 1, offset);
   for (size_t c = 0; c < chunks; ++c)
     chunk_offsets_[c + 1] = chunk_offsets_[c] + spawned_[c].*count;
-  if (all_rays.size() < chunk_offsets_[chunks]) all_rays.resize(chunk_offsets_[chunks]);
-  if (all_extras.size() < chunk_offsets_[chunks]) all_extras.resize(chunk_offsets_[chunks]);
+  if (all_rays.size() < chunk_offsets_[chunks]) resizeFaultedIn(all_rays, chunk_offsets_[chunks]);
+  if (all_extras.size() < chunk_offsets_[chunks])
+    resizeFaultedIn(all_extras, chunk_offsets_[chunks]);
   parallelFor(0LL, (long long)(chunks), [&](long long c) {
     const Spawned& out = spawned_[c];
     std::copy_n((out.*rays).begin(), out.*count, all_rays.begin() + chunk_offsets_[c]);
