@@ -291,7 +291,7 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
                  "grid: auto (adaptive if a voxel is full), adaptive, uniform or NX,NY,NZ")
       ->capture_default_str();
   app.add_option("--grid-density", o.grid.density,
-                 "lambda of the auto resolution R_i = d_i*cbrt(lambda*N/V)")
+                 "lambda of the auto (top) grid resolution R_i = d_i*cbrt(lambda*N/V)")
       ->capture_default_str()
       ->check(numberIn(0.001, 1000.0));
   app.add_flag("--pe-interrupt", o.pe_interrupt,

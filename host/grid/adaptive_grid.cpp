@@ -1,6 +1,7 @@
 #include "adaptive_grid.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <iterator>
 
@@ -72,17 +73,33 @@ std::vector<float> axisPlanes(float lo, float hi, int r) {
   return p;
 }
 
+// The resolution of a grid below a cell holding `count` triangles in the box of extents d:
+// the one at which a surface crossing the box along its largest face leaves about
+// `per_cell` triangles in each cell it passes through, r_i = d_i * sqrt(count / (per_cell *
+// A)) with A that face's area (each at least 1, within the uniform grid's limits). The
+// triangles below a full cell are a piece of surface, not a volume: the uniform grid's
+// volume rule (cube root of density * count) split a cell of 320 bunny triangles into 27
+// cells of 12 and made the scattered copies' 25,252 PEs of 42 triangles; this rule makes
+// 6,881 of 118 (docs/adaptive-grid.md). Rounded up: a cell just over the limit is split.
+glm::ivec3 surfaceGridResolution(const double d[3], size_t count, double per_cell) {
+  const double area = std::max({d[0] * d[1], d[1] * d[2], d[2] * d[0]});
+  if (!(area > 0.0)) return {1, 1, 1};
+  const double k = std::sqrt(double(count) / (per_cell * area));
+  glm::ivec3 r;
+  for (int a = 0; a < 3; ++a) r[a] = std::clamp(int(std::ceil(d[a] * k)), 1, kMaxGridResolution);
+  while ((long long)r.x * r.y * r.z > kMaxGridVoxels) r = glm::max(r / 2, glm::ivec3(1));
+  return r;
+}
+
 // A grid over the box [lo, hi] for the triangles at positions ids[0 .. id_count) of
 // `base` (increasing, all overlapping the box grown by m), its cells' leaves and grids
 // below them appended to `tree` in cell order (the grids below built in parallel, then
 // appended in that order, so the numbering is the same on any number of threads); returns
 // the node's local index, or -1 when the resolution is one cell (the box stays a leaf).
 int buildNode(const float lo[3], const float hi[3], const GrTriangle* base, const int* ids,
-              size_t id_count, int depth, double m, float density, int max_leaf, Subtree& tree) {
-  Bounds box;
-  box.lo = glm::vec3(lo[0], lo[1], lo[2]);
-  box.hi = glm::vec3(hi[0], hi[1], hi[2]);
-  glm::ivec3 want = autoGridResolution(box, id_count, density);
+              size_t id_count, int depth, double m, int max_leaf, Subtree& tree) {
+  const double extent[3] = {double(hi[0]) - lo[0], double(hi[1]) - lo[1], double(hi[2]) - lo[2]};
+  glm::ivec3 want = surfaceGridResolution(extent, id_count, kSurfaceCellShare * max_leaf);
   for (int a = 0; a < 3; ++a) {  // cells of at least kMinCellMargins margins
     const double fit = (double(hi[a]) - lo[a]) / (kMinCellMargins * m);
     if (fit < want[a]) want[a] = std::max(1, int(fit));
@@ -157,7 +174,7 @@ int buildNode(const float lo[3], const float hi[3], const GrTriangle* base, cons
     float clo[3], chi[3];
     cellBox(full[k], clo, chi);
     split[k] = buildNode(clo, chi, base, in[full[k]].data(), in[full[k]].size(), depth + 1, m,
-                         density, max_leaf, below[k]) >= 0;
+                         max_leaf, below[k]) >= 0;
   });
   for (int c = 0, k = 0; c < cells; ++c) {
     if (in[c].empty()) continue;
@@ -234,7 +251,7 @@ UniformGrid adaptiveGridOver(const UniformBins& top, const std::vector<GrTriangl
     const float hi[3] = {plane(0, v.x + 1), plane(1, v.y + 1), plane(2, v.z + 1)};
     split[pe] =
         buildNode(lo, hi, triangles.data(), topPositions(pe), size_t(top.triangleCountOfPe(pe)), 1,
-                  top.margin, settings.density, settings.max_leaf_triangles, trees[pe]) >= 0;
+                  top.margin, settings.max_leaf_triangles, trees[pe]) >= 0;
   });
 
   UniformGrid grid;

@@ -146,6 +146,59 @@ TEST(AdaptiveGrid, NoGridBelowACellSplitsItFinerThanItsMargin) {
   EXPECT_EQ(too_fine, 0) << "of " << split_axes << " split axes, margin " << g.margin;
 }
 
+// A flat square of nx x nz quads on [48, 52] x {50} x [48, 52], with two tiny triangles
+// spanning [0, 100]^3 so that the square lies alone in a cell of the top grid: the count
+// of the PEs holding it, their references and the fullest's count.
+struct SquareLeaves {
+  size_t pes = 0, references = 0;
+  int fullest = 0;
+};
+SquareLeaves squareInACell(int nx, int nz, const GridSettings& settings) {
+  Scene scene;
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < nz; ++j) {
+      const float x0 = 48.0f + 4.0f * i / nx, x1 = 48.0f + 4.0f * (i + 1) / nx;
+      const float z0 = 48.0f + 4.0f * j / nz, z1 = 48.0f + 4.0f * (j + 1) / nz;
+      const glm::vec3 a(x0, 50.0f, z0), b(x1, 50.0f, z0), c(x1, 50.0f, z1), d(x0, 50.0f, z1);
+      scene.positions.insert(scene.positions.end(), {a, b, c, a, c, d});
+    }
+  for (float corner : {0.0f, 100.0f})
+    scene.positions.insert(scene.positions.end(), {glm::vec3(corner), glm::vec3(corner + 0.01f),
+                                                   glm::vec3(corner, corner, corner + 0.01f)});
+  const std::vector<GrTriangle> triangles = prepareTriangles(scene);
+  const UniformGrid g = buildAdaptiveGrid(triangles, sceneBounds(scene), settings);
+  EXPECT_GE(g.adaptive.depth, 1);
+  SquareLeaves s;
+  for (int pe = 0; pe < g.peCount(); ++pe) {
+    const int count = g.triangleCountOfPe(pe);
+    if (g.pe_triangles[g.pe_tri_begin[pe]].prim >= 2 * nx * nz) continue;  // a corner's
+    ++s.pes;
+    s.references += size_t(count);
+    s.fullest = std::max(s.fullest, count);
+  }
+  return s;
+}
+
+// Below a full cell lies a piece of surface: its grid is fitted to a surface crossing it
+// (about kSurfaceCellShare of the leaf limit in each cell the surface passes through), not
+// to a volume. A square of 20,000 triangles: its leaves hold on average more than a quarter
+// of the limit (the volume rule, the cube root of density * count, split its cells of ~430
+// in 3 x 3 x 3, leaving ~48 each), and none more than the limit. A square of 270 triangles,
+// just over the limit, is split too (the resolution rounded up, not to the nearest: 1.45
+// cells per axis would have kept it whole).
+TEST(AdaptiveGrid, AGridBelowAFullCellFitsTheSurfaceItHolds) {
+  GridSettings settings;
+  settings.structure = GridStructure::Adaptive;
+  const SquareLeaves large = squareInACell(100, 100, settings);
+  ASSERT_GT(large.pes, 0u);
+  EXPECT_GT(double(large.references) / double(large.pes), settings.max_leaf_triangles / 4.0)
+      << large.pes << " PEs hold the square";
+  EXPECT_LE(large.fullest, settings.max_leaf_triangles);
+  const SquareLeaves small = squareInACell(15, 9, settings);
+  EXPECT_GT(small.pes, 1u);
+  EXPECT_LE(small.fullest, settings.max_leaf_triangles);
+}
+
 // Rays from random points of the box in random directions, some along the axes: at 64
 // distances along each ray, a point inside a leaf (away from its faces by the grid's
 // margin) lies in an entry of that leaf, and every entry's leaf, grown by the margin,
