@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "eight_bit_image.h"
 #include "errors.h"
 #include "image_codec.h"
 #include "parallel_loops.h"
@@ -58,48 +59,16 @@ const ImageChannel& colourChannel(const LayeredImage& image, const char* name) {
   return image.channels[c];
 }
 
-// PNG and JPEG: sRGB-encoded after clamping to [0, 1] (NaN as 0), with OpenImageIO's own
-// formula, in one pass on all cores. With an alpha channel (PNG only), the image's colour
-// is associated with it (layered_image.h) and a PNG stores it unassociated, as PNG defines
-// it: a partly covered pixel's colour divided by its alpha, so that laid over the render's
-// background it gives the rendered colour again; a covered pixel keeps its colour, an
-// uncovered one is given the background.
+// PNG and JPEG: the image's 8-bit codes (eight_bit_image.h), with alpha (PNG only) stored
+// unassociated.
 std::vector<unsigned char> encodeEightBit(const LayeredImage& image, const std::string& format) {
-  if (image.x != 0 || image.y != 0 ||
-      (image.full_width && (image.full_width != image.width || image.full_height != image.height)))
-    fail("an 8-bit image cannot hold a window of a larger one (use .exr)");
-  const ImageChannel* rgb[3] = {&colourChannel(image, "R"), &colourChannel(image, "G"),
-                                &colourChannel(image, "B")};
-  const int a = channelIndex(image, "A");
-  if (a >= 0 && format != "png") fail(format + " holds no alpha channel (use .png, .exr or .tif)");
-  const bool alpha = a >= 0;
-  if (alpha && image.channels[a].type != SampleType::Float) fail("alpha must be a float channel");
-  const int nc = alpha ? 4 : 3;
-  const long long pixels = (long long)image.width * image.height;
-  std::vector<float> encoded(size_t(pixels) * nc);
-  parallelFor(0LL, pixels, [&](long long p) {
-    float coverage = 1.0f;
-    if (alpha) {
-      const float value = image.channels[a].floats[p];
-      coverage = std::isnan(value) ? 0.0f : std::clamp(value, 0.0f, 1.0f);
-      encoded[size_t(p) * 4 + 3] = coverage;
-    }
-    for (int c = 0; c < 3; ++c) {
-      float v = rgb[c]->floats[p];
-      if (coverage == 0.0f)
-        v = image.background[c];
-      else if (coverage < 1.0f)
-        v /= coverage;
-      encoded[size_t(p) * nc + c] =
-          OIIO::linear_to_sRGB(std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f));
-    }
-  });
-  OIIO::ImageSpec spec(image.width, image.height, nc, OIIO::TypeDesc::UINT8);
-  if (alpha) {
+  const EightBitImage codes = eightBitImage(image, format);
+  OIIO::ImageSpec spec(image.width, image.height, codes.channels, OIIO::TypeDesc::UINT8);
+  if (codes.channels == 4) {
     spec.alpha_channel = 3;
     spec.attribute("oiio:UnassociatedAlpha", 1);  // as computed: OpenImageIO must not divide
   }
-  return encodeToMemory(format, spec, OIIO::TypeDesc::FLOAT, encoded.data());
+  return encodeToMemory(format, spec, OIIO::TypeDesc::UINT8, codes.codes.data());
 }
 
 OIIO::TypeDesc typeOf(SampleType type) {
