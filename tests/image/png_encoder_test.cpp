@@ -90,9 +90,9 @@ LayeredImage testImage(int width, int height, bool alpha, uint32_t seed) {
   }
   if (alpha) {
     std::vector<float> a(n);
-    for (size_t p = 0; p < n; ++p) a[p] = p % 5 == 0 ? 0.0f : p % 5 == 1 ? 1.0f : unit(rng);
-    a[3] = NAN;
-    a[4] = 1.5f;
+    const float specials_a[] = {0.0f, 1.0f, NAN, 1.5f, -0.5f};  // then values between
+    for (size_t p = 0; p < n; ++p)
+      a[p] = p % 7 < std::size(specials_a) ? specials_a[p % 7] : unit(rng);
     image.channels.push_back(floatChannel("A", std::move(a)));
   }
   return image;
