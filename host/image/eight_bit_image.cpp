@@ -12,13 +12,6 @@ namespace {
 
 [[noreturn]] void fail(const std::string& reason) { throw RenderError(reason); }
 
-const ImageChannel& colourChannel(const LayeredImage& image, const char* name) {
-  const int c = channelIndex(image, name);
-  if (c < 0 || image.channels[c].type != SampleType::Float)
-    fail("an 8-bit image needs float channels R, G and B");
-  return image.channels[c];
-}
-
 unsigned char code(float unit) { return static_cast<unsigned char>(unit * 255.0f + 0.5f); }
 
 }  // namespace

@@ -50,5 +50,11 @@ ImageChannel floatChannel(const std::string& name, const std::vector<float>& int
 ImageChannel idChannel(const std::string& name, const std::vector<int32_t>& ids);
 // The index of the channel named `name`, or -1.
 int channelIndex(const LayeredImage& image, const std::string& name);
+// What every encoder checks first: a positive size, some channels, each of width * height
+// values. Throws RenderError with a one-line message.
+void checkImage(const LayeredImage& image);
+// The float colour channel `name` ("R", "G" or "B"); throws RenderError when it is missing
+// or holds integers.
+const ImageChannel& colourChannel(const LayeredImage& image, const char* name);
 
 }  // namespace gridrt

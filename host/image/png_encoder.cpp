@@ -10,14 +10,7 @@
 namespace gridrt {
 
 std::vector<unsigned char> encodePng(const LayeredImage& image) {
-  auto fail = [](const std::string& reason) { throw RenderError(reason); };
-  if (image.width <= 0 || image.height <= 0)
-    fail("invalid image size " + std::to_string(image.width) + "x" + std::to_string(image.height));
-  const size_t pixels = size_t(image.width) * size_t(image.height);
-  for (const ImageChannel& c : image.channels)
-    if (c.size() != pixels)
-      fail("image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-           " but channel '" + c.name + "' has " + std::to_string(c.size()) + " values");
+  checkImage(image);
   const EightBitImage codes = eightBitImage(image, "png");
 
   // libpng's simplified writer: 8-bit values are written as they are, with an sRGB chunk.
@@ -29,7 +22,7 @@ std::vector<unsigned char> encodePng(const LayeredImage& image) {
   png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(png);  // room for any encoding, one pass
   std::vector<unsigned char> bytes(size);
   if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, codes.codes.data(), 0, nullptr))
-    fail(std::string("PNG encoding failed: ") + png.message);
+    throw RenderError(std::string("PNG encoding failed: ") + png.message);
   bytes.resize(size);
   return bytes;
 }

@@ -26,18 +26,6 @@ std::string oneLine(std::string message) {
 
 [[noreturn]] void fail(const std::string& reason) { throw RenderError(reason); }
 
-void checkImage(const LayeredImage& image) {
-  if (image.width <= 0 || image.height <= 0 || image.channels.empty())
-    fail("invalid image size " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-         " with " + std::to_string(image.channels.size()) + " channels");
-  const size_t expected = size_t(image.width) * size_t(image.height);
-  for (const ImageChannel& c : image.channels)
-    if (c.size() != expected)
-      fail("image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-           " but channel '" + c.name + "' has " + std::to_string(c.size()) + " values (expected " +
-           std::to_string(expected) + ")");
-}
-
 // The encoder for `format`, writing into `bytes` through OpenImageIO's memory proxy.
 std::vector<unsigned char> encodeToMemory(const std::string& format, const OIIO::ImageSpec& spec,
                                           OIIO::TypeDesc type, const void* pixels) {
@@ -50,13 +38,6 @@ std::vector<unsigned char> encodeToMemory(const std::string& format, const OIIO:
   if (!out->open(name, spec) || !out->write_image(type, pixels) || !out->close())
     fail(oneLine(out->geterror()));
   return bytes;
-}
-
-const ImageChannel& colourChannel(const LayeredImage& image, const char* name) {
-  const int c = channelIndex(image, name);
-  if (c < 0 || image.channels[c].type != SampleType::Float)
-    fail("an 8-bit image needs float channels R, G and B");
-  return image.channels[c];
 }
 
 // PNG and JPEG: the image's 8-bit codes (eight_bit_image.h), with alpha (PNG only) stored
