@@ -46,10 +46,10 @@ inline void prefaultForWriting(void* data, size_t bytes) {
 
 // Room for n elements in `v`, faulted in on every core, where it has less: for a vector
 // about to be filled whole, so its elements are dropped when it grows.
-template <typename T>
-void reserveFaultedIn(std::vector<T>& v, size_t n) {
+template <typename T, typename Allocator>
+void reserveFaultedIn(std::vector<T, Allocator>& v, size_t n) {
   if (n <= v.capacity()) return;
-  std::vector<T> fresh;
+  std::vector<T, Allocator> fresh;
   fresh.reserve(n);
   prefaultForWriting(fresh.data(), n * sizeof(T));
   v.swap(fresh);
@@ -57,8 +57,8 @@ void reserveFaultedIn(std::vector<T>& v, size_t n) {
 
 // Room for `more` elements after v's, faulted in on every core: for a vector about to grow
 // by that much (capacity at least doubles, so growing piece by piece stays linear).
-template <typename T>
-void reserveMoreFaultedIn(std::vector<T>& v, size_t more) {
+template <typename T, typename Allocator>
+void reserveMoreFaultedIn(std::vector<T, Allocator>& v, size_t more) {
   if (v.size() + more > v.capacity()) v.reserve(std::max(v.size() + more, 2 * v.capacity()));
   prefaultForWriting(v.data() + v.size(), more * sizeof(T));
 }
@@ -67,10 +67,10 @@ void reserveMoreFaultedIn(std::vector<T>& v, size_t more) {
 // every core before anything is copied or zeroed into it: for the renderer's per-frame
 // arrays, whose first frame otherwise faulted in ~170 MB page by page on one core
 // (the default scene at 640x480).
-template <typename T>
-void resizeFaultedIn(std::vector<T>& v, size_t n) {
+template <typename T, typename Allocator>
+void resizeFaultedIn(std::vector<T, Allocator>& v, size_t n) {
   if (n > v.capacity()) {
-    std::vector<T> fresh;
+    std::vector<T, Allocator> fresh;
     fresh.reserve(std::max(n, 2 * v.capacity()));
     prefaultForWriting(fresh.data(), n * sizeof(T));
     fresh.insert(fresh.end(), v.begin(), v.end());

@@ -7,6 +7,7 @@
 
 #include "bounds.h"
 #include "gridrt_types.h"
+#include "uninitialized_vector.h"
 
 namespace gridrt {
 
@@ -84,10 +85,12 @@ struct AdaptiveCells {
 struct UniformGrid {
   GrGridInfo info{};
   double margin = 0.0;
-  std::vector<int> pe_of_voxel;          // per voxel (x fastest), -1 if empty
-  std::vector<int> voxel_of_pe;          // per PE, its linear voxel index
-  std::vector<int> pe_tri_begin;         // per PE + 1: CSR offsets into pe_triangles
-  std::vector<GrTriangle> pe_triangles;  // per PE, its triangles in increasing global index
+  std::vector<int> pe_of_voxel;   // per voxel (x fastest), -1 if empty
+  std::vector<int> voxel_of_pe;   // per PE, its linear voxel index
+  std::vector<int> pe_tri_begin;  // per PE + 1: CSR offsets into pe_triangles
+  // Per PE, its triangles in increasing global index (sized without zeroing: the build
+  // writes every element).
+  UninitializedVector<GrTriangle> pe_triangles;
   size_t triangle_count = 0;
   // Per PE its box, lo x, y, z then hi x, y, z: for a uniform grid the voxel with the
   // 3D-DDA's plane arithmetic (min + k * cell, in float), for the adaptive structure its

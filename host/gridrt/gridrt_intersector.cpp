@@ -368,7 +368,7 @@ GrCullFrame GridRtIntersector::prepareCulling(bool allowed, const GrCullFrame& f
   // Culling needs every hit at t > 0 in front of the origin (packet_culling.h).
   if (!allowed || !(common.tmin >= 0.0f)) return GrCullFrame{};
   const glm::vec3 origin(common.ox, common.oy, common.oz);
-  if (cull_cache_.update(frame, origin, grid_.pe_triangles))
+  if (cull_cache_.update(frame, origin, grid_.pe_triangles.data(), grid_.pe_triangles.size()))
     cull_planes_.uploadNow(rt_, cull_cache_.planes());
   return frame;
 }

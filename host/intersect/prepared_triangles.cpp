@@ -48,10 +48,10 @@ void triangleVertices(const GrTriangle& t, glm::dvec3 v[3]) {
   v[2] = t.vertex_layout ? c : v[0] + c;
 }
 
-void checkTriangleLayout(const std::vector<GrTriangle>& triangles, const KernelOptions& kernel) {
+void checkTriangleLayout(const GrTriangle* triangles, size_t count, const KernelOptions& kernel) {
   int want = kernel.watertight ? 1 : 0;
-  for (const auto& t : triangles)
-    if (t.vertex_layout != want)
+  for (size_t i = 0; i < count; ++i)
+    if (triangles[i].vertex_layout != want)
       throw std::logic_error("triangles prepared for the other ray/triangle test");
 }
 

@@ -29,7 +29,12 @@ GrTriangle prepareTriangle(const glm::vec3 v[3], int prim, const KernelOptions& 
 void triangleVertices(const GrTriangle& t, glm::dvec3 v[3]);
 
 // Throws std::logic_error when `triangles` are not in the layout `kernel` reads.
-void checkTriangleLayout(const std::vector<GrTriangle>& triangles, const KernelOptions& kernel);
+void checkTriangleLayout(const GrTriangle* triangles, size_t count, const KernelOptions& kernel);
+template <typename Allocator>
+void checkTriangleLayout(const std::vector<GrTriangle, Allocator>& triangles,
+                         const KernelOptions& kernel) {
+  checkTriangleLayout(triangles.data(), triangles.size(), kernel);
+}
 
 // World-space bounds of all triangle vertices.
 Bounds sceneBounds(const Scene& scene);

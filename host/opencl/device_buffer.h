@@ -34,12 +34,14 @@ class DeviceBuffer {
     if (count) rt.queue().enqueueWriteBuffer(buffer_, CL_FALSE, 0, count * sizeof(T), data);
     return buffer_;
   }
-  cl::Buffer& upload(ClRuntime& rt, const std::vector<T>& data) {
+  template <typename Allocator>
+  cl::Buffer& upload(ClRuntime& rt, const std::vector<T, Allocator>& data) {
     return upload(rt, data.data(), data.size());
   }
 
   // Blocking: returns once the data is copied, so `data` may be a temporary.
-  cl::Buffer& uploadNow(ClRuntime& rt, const std::vector<T>& data) {
+  template <typename Allocator>
+  cl::Buffer& uploadNow(ClRuntime& rt, const std::vector<T, Allocator>& data) {
     reserve(rt, data.size());
     if (!data.empty())
       rt.queue().enqueueWriteBuffer(buffer_, CL_TRUE, 0, data.size() * sizeof(T), data.data());

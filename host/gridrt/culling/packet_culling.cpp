@@ -99,15 +99,13 @@ void boxesOfBlock(const GrCullFrame& frame, const glm::dvec3& o, const GrTriangl
 
 // boxesOfBlock over all `triangles`, in parallel, into planes of `stride` floats from
 // `planes` on.
-void boxPlanes(const GrCullFrame& frame, const glm::vec3& origin,
-               const std::vector<GrTriangle>& triangles, double error_factor, float* planes,
-               size_t stride) {
+void boxPlanes(const GrCullFrame& frame, const glm::vec3& origin, const GrTriangle* triangles,
+               size_t n, double error_factor, float* planes, size_t stride) {
   const glm::dvec3 o(origin);
-  const size_t n = triangles.size();
   parallelFor(size_t(0), (n + kCullBlock - 1) / kCullBlock, [&](size_t block) {
     const size_t first = block * kCullBlock;
     float* at = planes + first;
-    boxesOfBlock(frame, o, triangles.data() + first, int(std::min<size_t>(kCullBlock, n - first)),
+    boxesOfBlock(frame, o, triangles + first, int(std::min<size_t>(kCullBlock, n - first)),
                  error_factor, at, at + stride, at + 2 * stride, at + 3 * stride);
   });
 }
@@ -138,15 +136,15 @@ void computeCullBoxes(const GrCullFrame& frame, const glm::vec3& origin,
                       double error_factor) {
   const size_t n = triangles.size();
   std::vector<float> planes(4 * n);
-  boxPlanes(frame, origin, triangles, error_factor, planes.data(), n);
+  boxPlanes(frame, origin, triangles.data(), n, error_factor, planes.data(), n);
   boxes.resize(n);
   for (size_t k = 0; k < n; ++k)
     boxes[k] = CullBox{planes[k], planes[n + k], planes[2 * n + k], planes[3 * n + k]};
 }
 
 bool CullPlaneCache::update(const GrCullFrame& frame, const glm::vec3& origin,
-                            const std::vector<GrTriangle>& triangles) {
-  const size_t stride = triangles.size() + kCullPlanePadding;
+                            const GrTriangle* triangles, size_t count) {
+  const size_t stride = count + kCullPlanePadding;
   if (valid_ && std::memcmp(&frame, &frame_, sizeof frame) == 0 && origin == origin_ &&
       planes_.size() == 4 * stride)
     return false;
@@ -155,7 +153,7 @@ bool CullPlaneCache::update(const GrCullFrame& frame, const glm::vec3& origin,
     reserveFaultedIn(planes_, 4 * stride);  // fresh memory: on every core (prefault.h)
     planes_.assign(4 * stride, 0.0f);
   }
-  boxPlanes(frame, origin, triangles, kCullErrorFactor, planes_.data(), stride);
+  boxPlanes(frame, origin, triangles, count, kCullErrorFactor, planes_.data(), stride);
   frame_ = frame;
   origin_ = origin;
   valid_ = true;

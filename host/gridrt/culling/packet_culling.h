@@ -70,8 +70,8 @@ constexpr size_t kCullPlanePadding = GR_PACKET_LANES;
 class CullPlaneCache {
  public:
   // True when the planes were recomputed (a device copy is then stale).
-  bool update(const GrCullFrame& frame, const glm::vec3& origin,
-              const std::vector<GrTriangle>& triangles);
+  bool update(const GrCullFrame& frame, const glm::vec3& origin, const GrTriangle* triangles,
+              size_t count);
   const std::vector<float>& planes() const { return planes_; }
   size_t stride() const { return planes_.size() / 4; }
 
