@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "errors.h"
+#include "parallel_loops.h"
 #include "prefault.h"
 
 namespace gridrt::gltf {
@@ -193,11 +194,21 @@ void readElementsOf(const unsigned char* data, size_t stride, size_t count, int 
     }
 }
 
+// Elements below which one core reads an accessor: a parallel loop costs about what a few
+// thousand conversions do.
+constexpr size_t kParallelReadElements = size_t(1) << 16;
+
 void readElements(const unsigned char* data, size_t stride, size_t count, int components,
                   int component_type, bool normalized, double* out) {
+  // In consecutive ranges on every core when there are many (a mesh of millions of
+  // vertices); each element is converted alone, so the values are the same either way.
   auto read = [&](auto type) {
-    readElementsOf<decltype(type)>(data, stride, count, components, component_type, normalized,
-                                   out);
+    const int slices = count >= kParallelReadElements ? parallelSliceCount() : 1;
+    parallelSlices(slices, [&](int me, int n) {
+      const auto [first, last] = sliceRange(count, me, n);
+      readElementsOf<decltype(type)>(data + first * stride, stride, last - first, components,
+                                     component_type, normalized, out + first * size_t(components));
+    });
   };
   switch (component_type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "uninitialized_vector.h"
+
 namespace gridrt::gltf {
 
 // tinygltf reports several problems separated by newlines, and file content (names, the
@@ -39,7 +41,8 @@ struct AccessorData {
   int component_type = 0;
   int type = 0;
   bool normalized = false;
-  std::vector<double> values;  // count * components, element-major
+  // count * components, element-major (sized without zeroing: every value is read in).
+  UninitializedVector<double> values;
 
   double at(size_t element, int component) const {
     return values[element * size_t(components) + size_t(component)];

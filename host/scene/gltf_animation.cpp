@@ -82,7 +82,7 @@ SamplerKeys readSampler(const tinygltf::Model& model, const tinygltf::AnimationS
     fail(label, where + ": input times must be FLOAT SCALAR, not " +
                     gltf::componentName(input.component_type) + " " + gltf::typeName(input.type));
   if (input.count == 0) fail(label, where + ": input has no key times");
-  keys.times = input.values;
+  keys.times.assign(input.values.begin(), input.values.end());
   for (size_t k = 0; k < keys.times.size(); ++k) {
     if (!std::isfinite(keys.times[k]))
       fail(label, where + ": input time " + std::to_string(k) + " is " +
@@ -144,7 +144,7 @@ KeyframeTrack channelTrack(const tinygltf::Model& model, const SamplerKeys& keys
                     (groups == 3 ? "CUBICSPLINE " : "") + name + " needs " +
                     std::to_string(needed) + ")");
   track.width = property == AnimatedProperty::Weights ? int(elements_per_value) : out.components;
-  track.values = out.values;
+  track.values.assign(out.values.begin(), out.values.end());
   if (track.quaternion)  // a zero quaternion is no rotation (cubic tangents may be zero)
     for (size_t k = 0; k < track.times.size(); ++k) {
       const size_t first = (k * groups + (groups == 3 ? 1 : 0)) * 4;

@@ -29,8 +29,10 @@
 #include "gltf_textures.h"
 #include "gltf_vertex_attributes.h"
 #include "mapped_file.h"
+#include "parallel_loops.h"
 #include "prefault.h"
 #include "scene_triangles.h"
+#include "uninitialized_vector.h"
 
 namespace gridrt {
 namespace {
@@ -45,6 +47,8 @@ constexpr int kMaxJsonDepth = 256;
 // tinygltf takes lengths as unsigned int.
 constexpr size_t kMaxInputBytes = std::numeric_limits<uint32_t>::max();
 constexpr double kPi = 3.14159265358979323846;
+// Triangles a core takes at a time when a primitive's triangles go to world space.
+constexpr size_t kLoaderTriangleGrain = 4096;
 
 // ---------------------------------------------------------------------------------------------
 // Messages
@@ -860,7 +864,7 @@ class SceneBuilder {
         gltf::readVertexAttributes(model_, prim, vertex_count, quantized_, where, label_);
     applyMorphTargets(prim, morph_weights, "POSITION", positions, where);
     if (normals) applyMorphTargets(prim, morph_weights, "NORMAL", *normals, where);
-    const std::vector<uint32_t> indices = triangleIndices(prim, vertex_count, where);
+    const UninitializedVector<uint32_t> indices = triangleIndices(prim, vertex_count, where);
     const int material = materialIndex(prim.material, where);
     // A skinned mesh moves with its joints; the node's own transform does not apply (glTF).
     const bool skinned = joints && attribute(prim, "JOINTS_0") >= 0;
@@ -871,14 +875,27 @@ class SceneBuilder {
     const bool node_mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
     // The scene's arrays grown once for the whole primitive (pushing into them had regrown
     // and faulted in tens of MB piece by piece on one core).
-    reserveMoreFaultedIn(scene_.positions, indices.size());
-    reserveMoreFaultedIn(scene_.normals, indices.size());
-    reserveMoreFaultedIn(scene_.material_of, indices.size() / 3);
+    const size_t count = indices.size() / 3, first = scene_.material_of.size();
+    reserveMoreFaultedIn(scene_.positions, 3 * count);
+    reserveMoreFaultedIn(scene_.normals, 3 * count);
+    reserveMoreFaultedIn(scene_.material_of, count);
+    scene_.positions.resize(3 * (first + count));
+    scene_.normals.resize(3 * (first + count));
+    scene_.material_of.resize(first + count, material);
 
-    for (size_t t = 0; t < indices.size(); t += 3) {
+    // A skinned triangle mirrors where its first vertex's skin matrix does.
+    auto mirrors = [&](size_t t) {
+      return skinned ? glm::determinant(glm::dmat3(skin[indices[3 * t]])) < 0.0 : node_mirrored;
+    };
+    // First every triangle in world space, on all cores, into its place as if all were kept
+    // (a mesh of a million triangles had spent a fifth of its load here on one core); each
+    // triangle's arithmetic is what it was one at a time, so the scene does not depend on
+    // the number of cores.
+    std::vector<TriangleVerdict> verdicts(count);
+    parallelForDynamic(size_t(0), count, kLoaderTriangleGrain, [&](size_t t) {
       glm::vec3 p[3], n[3];
       for (int k = 0; k < 3; ++k) {
-        const size_t vertex = indices[t + size_t(k)];
+        const size_t vertex = indices[3 * t + size_t(k)];
         const glm::dmat4& m = skinned ? skin[vertex] : world;
         p[k] = glm::vec3(transformPoint(m, positions.vec3(vertex)));
         const glm::dmat3 to_world =
@@ -887,35 +904,57 @@ class SceneBuilder {
         n[k] =
             normals ? unitOr(to_world * normals->vec3(vertex), glm::vec3(0.0f)) : glm::vec3(0.0f);
       }
-      // A skinned triangle mirrors where its first vertex's skin matrix does.
-      const bool mirrored =
-          skinned ? glm::determinant(glm::dmat3(skin[indices[t]])) < 0.0 : node_mirrored;
-      if (!keepTriangle(p, scene_)) continue;
+      verdicts[t] = triangleVerdict(p);
+      if (verdicts[t] != TriangleVerdict::Kept) return;
       // The glTF spec: a mirroring transform turns the winding clockwise; swap it back.
-      if (mirrored) std::swap(p[1], p[2]), std::swap(n[1], n[2]);
-      uint32_t stored[3] = {indices[t], indices[t + 1], indices[t + 2]};
-      if (mirrored) std::swap(stored[1], stored[2]);
-      glm::vec4 tangents[3];
-      for (int k = 0; k < 3; ++k)
-        tangents[k] = gltf::worldTangent(extras, stored[k], skinned ? skin[stored[k]] : world);
-      gltf::appendTriangleAttributes(extras, stored, tangents, scene_.material_of.size(), scene_);
-      addTriangle(p, n, material, scene_);
-      any_normals_ = any_normals_ || normals.has_value();
+      if (mirrors(t)) std::swap(p[1], p[2]), std::swap(n[1], n[2]);
+      const size_t at = 3 * (first + t);
+      triangleCorners(p, n, &scene_.positions[at], &scene_.normals[at]);
+    });
+    // Then, in order, the dropped triangles counted and squeezed out, and the kept ones'
+    // vertex attributes appended.
+    const bool attributes = extras.texcoords[0] || extras.texcoords[1] || extras.colors ||
+                            extras.tangents || !scene_.tangents.empty() || !scene_.colors.empty() ||
+                            !scene_.texcoords[0].empty() || !scene_.texcoords[1].empty();
+    size_t kept = 0;
+    for (size_t t = 0; t < count; ++t) {
+      if (!countVerdict(verdicts[t], scene_)) continue;
+      if (kept != t) {
+        std::copy_n(&scene_.positions[3 * (first + t)], 3, &scene_.positions[3 * (first + kept)]);
+        std::copy_n(&scene_.normals[3 * (first + t)], 3, &scene_.normals[3 * (first + kept)]);
+      }
+      if (attributes) {
+        uint32_t stored[3] = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
+        if (mirrors(t)) std::swap(stored[1], stored[2]);
+        glm::vec4 tangents[3];
+        for (int k = 0; k < 3; ++k)
+          tangents[k] = gltf::worldTangent(extras, stored[k], skinned ? skin[stored[k]] : world);
+        gltf::appendTriangleAttributes(extras, stored, tangents, first + kept, scene_);
+      }
+      ++kept;
     }
+    scene_.positions.resize(3 * (first + kept));
+    scene_.normals.resize(3 * (first + kept));
+    scene_.material_of.resize(first + kept);
+    any_normals_ = any_normals_ || (normals.has_value() && kept > 0);
   }
 
-  // The primitive's vertex indices, three per triangle, all checked against vertex_count.
-  std::vector<uint32_t> triangleIndices(const tinygltf::Primitive& prim, size_t vertex_count,
-                                        const std::string& where) const {
-    std::vector<uint32_t> out;
+  // The primitive's vertex indices, three per triangle, all checked against vertex_count
+  // (on all cores: a mesh of millions of vertices; the first index out of range is the one
+  // reported).
+  UninitializedVector<uint32_t> triangleIndices(const tinygltf::Primitive& prim,
+                                                size_t vertex_count,
+                                                const std::string& where) const {
+    UninitializedVector<uint32_t> out;
     if (prim.indices < 0) {
       if (vertex_count % 3 != 0)
         fail(label_, where + ": " + std::to_string(vertex_count) +
                          " vertices is not a multiple of 3 for triangles");
       if (vertex_count > std::numeric_limits<uint32_t>::max())
         fail(label_, where + ": too many vertices");
+      reserveFaultedIn(out, vertex_count);
       out.resize(vertex_count);
-      for (size_t i = 0; i < vertex_count; ++i) out[i] = uint32_t(i);
+      parallelFor(size_t(0), vertex_count, [&](size_t i) { out[i] = uint32_t(i); });
       return out;
     }
     const gltf::AccessorData indices = readIndices(model_, prim.indices, label_);
@@ -923,14 +962,22 @@ class SceneBuilder {
       fail(label_, "accessor " + std::to_string(prim.indices) + ": " +
                        std::to_string(indices.count) +
                        " indices is not a multiple of 3 for triangles");
+    reserveFaultedIn(out, indices.count);
     out.resize(indices.count);
-    for (size_t i = 0; i < indices.count; ++i) {
-      out[i] = uint32_t(indices.at(i, 0));
-      if (out[i] >= vertex_count)
-        fail(label_, "accessor " + std::to_string(prim.indices) + ": index " +
-                         std::to_string(out[i]) + " out of range for " +
-                         std::to_string(vertex_count) + " vertices");
-    }
+    std::vector<size_t> first_bad(size_t(parallelSliceCount()), indices.count);
+    parallelSlices(int(first_bad.size()), [&](int me, int slices) {
+      const auto [begin, end] = sliceRange(indices.count, me, slices);
+      for (size_t i = begin; i < end; ++i) {
+        out[i] = uint32_t(indices.at(i, 0));
+        if (out[i] >= vertex_count && first_bad[size_t(me)] == indices.count)
+          first_bad[size_t(me)] = i;
+      }
+    });
+    const size_t bad = *std::min_element(first_bad.begin(), first_bad.end());
+    if (bad < indices.count)
+      fail(label_, "accessor " + std::to_string(prim.indices) + ": index " +
+                       std::to_string(out[bad]) + " out of range for " +
+                       std::to_string(vertex_count) + " vertices");
     return out;
   }
 

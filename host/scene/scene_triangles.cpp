@@ -26,25 +26,38 @@ glm::vec3 geometricNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec
   return unitOr(glm::cross(glm::dvec3(b - a), glm::dvec3(c - a)), kArbitraryNormal);
 }
 
-bool keepTriangle(const glm::vec3 (&p)[3], Scene& scene) {
-  if (!isFinite(p[0]) || !isFinite(p[1]) || !isFinite(p[2])) {
-    ++scene.dropped_degenerate;
-    return false;
-  }
+TriangleVerdict triangleVerdict(const glm::vec3 (&p)[3]) {
+  if (!isFinite(p[0]) || !isFinite(p[1]) || !isFinite(p[2])) return TriangleVerdict::Degenerate;
   const glm::dvec3 a(p[0]);
-  if (glm::cross(glm::dvec3(p[1]) - a, glm::dvec3(p[2]) - a) == glm::dvec3(0.0)) {
-    ++scene.dropped_zero_area;
-    return false;
+  if (glm::cross(glm::dvec3(p[1]) - a, glm::dvec3(p[2]) - a) == glm::dvec3(0.0))
+    return TriangleVerdict::ZeroArea;
+  return TriangleVerdict::Kept;
+}
+
+bool countVerdict(TriangleVerdict verdict, Scene& scene) {
+  if (verdict == TriangleVerdict::Degenerate) ++scene.dropped_degenerate;
+  if (verdict == TriangleVerdict::ZeroArea) ++scene.dropped_zero_area;
+  return verdict == TriangleVerdict::Kept;
+}
+
+bool keepTriangle(const glm::vec3 (&p)[3], Scene& scene) {
+  return countVerdict(triangleVerdict(p), scene);
+}
+
+void triangleCorners(const glm::vec3 (&p)[3], const glm::vec3 (&n)[3], glm::vec3* positions,
+                     glm::vec3* normals) {
+  const glm::vec3 face = geometricNormal(p[0], p[1], p[2]);
+  for (int k = 0; k < 3; ++k) {
+    positions[k] = p[k];
+    normals[k] = n[k] == glm::vec3(0.0f) ? face : n[k];
   }
-  return true;
 }
 
 void addTriangle(const glm::vec3 (&p)[3], const glm::vec3 (&n)[3], int material, Scene& scene) {
-  const glm::vec3 face = geometricNormal(p[0], p[1], p[2]);
-  for (int k = 0; k < 3; ++k) {
-    scene.positions.push_back(p[k]);
-    scene.normals.push_back(n[k] == glm::vec3(0.0f) ? face : n[k]);
-  }
+  glm::vec3 positions[3], normals[3];
+  triangleCorners(p, n, positions, normals);
+  scene.positions.insert(scene.positions.end(), positions, positions + 3);
+  scene.normals.insert(scene.normals.end(), normals, normals + 3);
   scene.material_of.push_back(material);
 }
 

@@ -22,9 +22,18 @@ glm::vec3 geometricNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec
 // on repeated vertices.
 bool keepTriangle(const glm::vec3 (&p)[3], Scene& scene);
 
+// keepTriangle in two steps, for loaders that judge triangles on several cores: the
+// verdict alone, then counted in the scene's totals (true for Kept).
+enum class TriangleVerdict : unsigned char { Kept, Degenerate, ZeroArea };
+TriangleVerdict triangleVerdict(const glm::vec3 (&p)[3]);
+bool countVerdict(TriangleVerdict verdict, Scene& scene);
+
 // Appends a kept triangle: its vertices, their normals (zero, meaning none usable, becomes
 // the face normal) and its material.
 void addTriangle(const glm::vec3 (&p)[3], const glm::vec3 (&n)[3], int material, Scene& scene);
+// The three positions and normals addTriangle stores for a kept triangle.
+void triangleCorners(const glm::vec3 (&p)[3], const glm::vec3 (&n)[3], glm::vec3* positions,
+                     glm::vec3* normals);
 
 // Normals are all-or-nothing: without any triangle that came with normals, there are none.
 void finishNormals(bool any_normals, Scene& scene);

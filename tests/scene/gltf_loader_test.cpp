@@ -742,6 +742,85 @@ TEST(GltfLoader, ReadsVertexColours) {
   EXPECT_TRUE(scene.warnings.empty());
 }
 
+// A mesh large enough to be read and moved to world space on all cores (more vertices than
+// the parallel read's threshold, many chunks of triangles), under a mirroring node, with
+// NaN and zero-area triangles spread through it and a colour per vertex: the kept
+// triangles come out in order, wound back, their colours with them, and the dropped ones
+// are counted, as when the triangles went one at a time.
+TEST(GltfLoader, AManyTriangleMeshIsReadInOrderOnAllCores) {
+  constexpr size_t kTriangles = 30000;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  auto dropsNan = [](size_t t) { return t % 997 == 5; };
+  auto dropsArea = [](size_t t) { return t % 1009 == 7; };
+  std::vector<float> xyz, rgb;
+  for (size_t t = 0; t < kTriangles; ++t) {
+    const float x = float(t);
+    const float corners[9] = {
+        x, 0, 0, x, 1, 0, x, dropsArea(t) ? 1.0f : 0.0f, dropsArea(t) ? 0.0f : 1.0f};
+    xyz.insert(xyz.end(), corners, corners + 9);
+    if (dropsNan(t)) xyz[xyz.size() - 2] = nan;
+    for (int k = 0; k < 3; ++k) {
+      const float v = float(3 * t + size_t(k));
+      rgb.insert(rgb.end(), {v / float(3 * kTriangles), 0.5f, 1.0f - v / float(3 * kTriangles)});
+    }
+  }
+  GltfBuilder b;
+  const int pos = b.vec3(xyz);
+  const int colour = b.vec3(rgb);
+  std::vector<float> x_axis(xyz.size(), 0.0f);
+  for (size_t v = 0; v < x_axis.size(); v += 3) x_axis[v] = 1.0f;
+  const int normal = b.vec3(x_axis);
+  const std::string rest =
+      "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0,\"scale\":[-1,1,1],"
+      "\"translation\":[0,0,2]}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":" +
+      std::to_string(pos) + ",\"NORMAL\":" + std::to_string(normal) +
+      ",\"COLOR_0\":" + std::to_string(colour) + "}}]}]";
+  const Scene s = loadJson(b.json(rest));
+  size_t kept = 0, nans = 0, flat = 0;
+  for (size_t t = 0; t < kTriangles; ++t) {
+    if (dropsNan(t)) {
+      ++nans;
+      continue;
+    }
+    if (dropsArea(t)) {
+      ++flat;
+      continue;
+    }
+    ASSERT_LT(kept, s.triangleCount());
+    // Mirrored by the node: corners 1 and 2 swap places.
+    const size_t from[3] = {3 * t, 3 * t + 2, 3 * t + 1};
+    for (int k = 0; k < 3; ++k) {
+      const size_t v = from[k];
+      const glm::vec3 want(-xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2] + 2.0f);
+      ASSERT_EQ(s.positions[3 * kept + size_t(k)], want) << "triangle " << t;
+      ASSERT_EQ(s.normals[3 * kept + size_t(k)], glm::vec3(-1, 0, 0)) << "triangle " << t;
+      ASSERT_EQ(s.colors[3 * kept + size_t(k)],
+                glm::vec4(rgb[3 * v], rgb[3 * v + 1], rgb[3 * v + 2], 1.0f))
+          << "triangle " << t;
+    }
+    ++kept;
+  }
+  EXPECT_EQ(s.triangleCount(), kept);
+  EXPECT_EQ(s.colors.size(), 3 * kept);
+  EXPECT_EQ(s.normals.size(), 3 * kept);
+  EXPECT_EQ(s.dropped_degenerate, nans);
+  EXPECT_EQ(s.dropped_zero_area, flat);
+}
+
+// Indices are checked on all cores: of several out of range, the first is reported.
+TEST(GltfLoader, OfManyIndicesOutOfRangeTheFirstIsReported) {
+  GltfBuilder b;
+  const int pos = b.vec3(kQuad);
+  std::vector<uint32_t> indices(90000);
+  for (size_t i = 0; i < indices.size(); ++i) indices[i] = uint32_t(i % 4);
+  indices[40001] = 99999991;  // the first
+  indices[50002] = 99999992;
+  indices[89999] = 99999993;
+  const int idx = b.indicesU32(indices);
+  EXPECT_SCENE_ERROR(loadJson(b.json(singleMesh(primitive(pos, idx)))),
+                     "accessor 1: index 99999991 out of range for 4 vertices");
+}
+
 TEST(GltfLoader, RejectsSkinJointOutOfRange) {
   GltfBuilder b;
   const int pos = b.vec3({0, 0, 0, 1, 0, 0, 1, 1, 0});
