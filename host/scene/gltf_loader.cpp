@@ -913,9 +913,7 @@ class SceneBuilder {
     });
     // Then, in order, the dropped triangles counted and squeezed out, and the kept ones'
     // vertex attributes appended.
-    const bool attributes = extras.texcoords[0] || extras.texcoords[1] || extras.colors ||
-                            extras.tangents || !scene_.tangents.empty() || !scene_.colors.empty() ||
-                            !scene_.texcoords[0].empty() || !scene_.texcoords[1].empty();
+    const bool attributes = gltf::appendsTriangleAttributes(extras, scene_);
     size_t kept = 0;
     for (size_t t = 0; t < count; ++t) {
       if (!countVerdict(verdicts[t], scene_)) continue;

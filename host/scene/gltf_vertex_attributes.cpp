@@ -121,6 +121,14 @@ void appendTriangleAttributes(const VertexAttributes& attributes, const uint32_t
   for (int k = 0; k < 3; ++k) scene.tangents.push_back(tangents[k]);
 }
 
+bool appendsTriangleAttributes(const VertexAttributes& attributes, const Scene& scene) {
+  // The cases where appendOne and the tangents step above return at once, all together.
+  for (int set = 0; set < 2; ++set)
+    if (attributes.texcoords[set] || !scene.texcoords[set].empty()) return true;
+  return attributes.colors || !scene.colors.empty() || attributes.tangents ||
+         !scene.tangents.empty();
+}
+
 void finishVertexAttributes(Scene& scene) {
   const size_t vertices = scene.positions.size();
   for (auto& uv : scene.texcoords)

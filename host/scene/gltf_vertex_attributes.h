@@ -42,6 +42,9 @@ VertexAttributes readVertexAttributes(const tinygltf::Model& model, const tinygl
 // tangents: the vertices' world tangents (worldTangent).
 void appendTriangleAttributes(const VertexAttributes& attributes, const uint32_t vertices[3],
                               const glm::vec4 tangents[3], size_t triangles_before, Scene& scene);
+// Whether appendTriangleAttributes adds anything for a primitive with `attributes` to
+// `scene`: false when neither has any of them (a loader may then skip the per-triangle call).
+bool appendsTriangleAttributes(const VertexAttributes& attributes, const Scene& scene);
 
 // Vertex `vertex`'s tangent moved by `matrix` (its xyz unit, w the sign of the file's w
 // times that of the matrix's determinant, so that the bitangent mirrors with the mesh);
