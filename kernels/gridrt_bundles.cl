@@ -103,7 +103,8 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
     __global const GrTriangle* pe_tris, __global float* results, int lanes,
     __global int* first_hit_key, int any_hit, int interrupt, GrCullFrame cull,
     __global const float* cull_planes, int cull_stride, __global const float* seg_planes,
-    int seg_stride) {
+    int seg_stride, __global const GrCullFrame* set_frames, __global const float* set_planes,
+    int set_stride, int sets_enabled) {
   const GrBundleTask task = tasks[get_group_id(0)];
   /* The PE's box (UniformGrid::pe_box): a uniform grid's voxel as the 3D-DDA's planes
    * (min + k * cell, computed on the host in float) or an adaptive leaf, whose faces are
@@ -131,10 +132,19 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
   o.any_hit = any_hit;
   o.interrupt = interrupt;
   const int packets = (task.ray_count + GR_PACKET_LANES - 1) / GR_PACKET_LANES;
-  /* Packet culling needs a common origin; rays with their own origins use segment
-   * culling instead. */
-  GrCullFrame no_cull = cull;
-  no_cull.enabled = 0.0f;
+  /* Packet culling needs a common origin, or a common end: rays towards a light are culled
+   * with the boxes seen from the light on their cube face (host/gridrt/culling/light_culling.h;
+   * a lane's (a, b) is the same for d and -d). Other rays with their own origins use segment
+   * culling. */
+  GrCullFrame own_cull = cull;
+  own_cull.enabled = 0.0f;
+  int own_seg_cull = 1;
+  if (sets_enabled && task.cull_set >= 0) {
+    own_cull = set_frames[task.cull_set];
+    pe.cull_planes = set_planes + (size_t)task.cull_set * 4 * (size_t)set_stride;
+    pe.cull_stride = set_stride;
+    own_seg_cull = 0;
+  }
 
   for (int p = get_local_id(0); p < packets; p += GR_PE_LOCAL_SIZE) {
     const int first = task.first_ray + p * GR_PACKET_LANES;
@@ -161,7 +171,7 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
       gr_prepare_rays16(&r);
       gr_bundle_packet(&r, vload16(0, planes + GR_PLANE_TMIN * stride + first),
                        vload16(0, planes + GR_PLANE_TMAX * stride + first), in_task, first, out,
-                       &box, &pe, &o, no_cull, 1);
+                       &box, &pe, &o, own_cull, own_seg_cull);
     }
   }
 }

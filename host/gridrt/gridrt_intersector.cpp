@@ -353,14 +353,28 @@ void GridRtIntersector::intersectTowardsPoint(const glm::vec3& point,
     return;
   }
   Stopwatch clock;
-  bundleLightRays(grid_, point, rays.data(), rays.size(), light_bundles_, light_scratch_);
-  counters_.lists_ms += clock.ms();
+  const LightRayBounds bounds =
+      bundleLightRays(grid_, point, rays.data(), rays.size(), light_bundles_, light_scratch_);
   if (!force_light_bundles_ &&
       light_bundles_.out_lanes > kMaxLightBundleLanesPerRay * rays.size()) {
+    counters_.lists_ms += clock.ms();
     intersect(rays, mode, hits, nullptr);
     return;
   }
-  intersectBundles(rays, light_bundles_, mode, allInterrupt(), hits, nullptr);
+  TowardsOrigin towards;
+  towards.miss = bounds.miss;
+  towards.ray_reach = bounds.reach;
+  towards.min_length = bounds.min_length;
+  const bool light_culling = light_culling_allowed_ && LightCullCache::usable(towards);
+  if (light_culling &&
+      light_cull_cache_.update(point, towards, bounds.faces, grid_.pe_triangles.data(),
+                               grid_.pe_triangles.size())) {
+    light_cull_planes_.uploadNow(rt_, light_cull_cache_.planes());
+    light_cull_frames_.upload(rt_, light_cull_cache_.frames().data(), 6);
+  }
+  counters_.lists_ms += clock.ms();
+  intersectBundles(rays, light_bundles_, mode, allInterrupt(), hits, nullptr, nullptr, nullptr,
+                   light_culling);
 }
 
 GrCullFrame GridRtIntersector::prepareCulling(bool allowed, const GrCullFrame& frame,
@@ -449,7 +463,7 @@ void GridRtIntersector::generateAndIntersectPrimary(const PinholeView& view,
 void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const RayBundles& bundles,
                                          HitMode mode, bool interrupt, std::vector<GrHit>& hits,
                                          RayDiagnostics* diagnostics, const GrCullFrame* cull_frame,
-                                         const PlaneFill* fill) {
+                                         const PlaneFill* fill, bool light_culling) {
   const size_t n = rays.size();
   hits.resize(n);
   const size_t slots = bundles.ray_of.size();
@@ -577,6 +591,10 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       args.cull_stride = int(cull_cache_.stride());
       args.seg_planes = seg_planes_.get();
       args.seg_stride = seg_stride_;
+      args.set_frames = light_cull_frames_.reserve(rt_, 6);
+      args.set_planes = light_cull_planes_.reserve(rt_, 1);
+      args.set_stride = int(light_cull_cache_.stride());
+      args.sets_enabled = light_culling ? 1 : 0;
       bundle_kernel_.enqueue(rt_.queue(), cl::NDRange(task_count * kPeLocalSize),
                              cl::NDRange(kPeLocalSize), args);
       results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);

@@ -10,6 +10,7 @@
 #include "intersector.h"
 #include "kernel_call.h"
 #include "light_bundles.h"
+#include "light_culling.h"
 #include "packet_culling.h"
 #include "pe_binning.h"
 #include "ray_bundles.h"
@@ -78,6 +79,9 @@ class GridRtIntersector : public Intersector {
                              std::vector<GrHit>& hits) override;
   // Tests send every light batch through the bundles, whatever its size and shape.
   void forceLightBundles() { force_light_bundles_ = true; }
+  // Light culling (light_culling.h) on or off for later batches towards a point; on by
+  // default. For tests: off, the light bundles' kernels use segment culling.
+  void allowLightCulling(bool allowed) { light_culling_allowed_ = allowed; }
   // Which batches run with the interrupt chain.
   bool cameraInterrupt() const { return interrupt_ != PeInterrupt::Off; }
   bool allInterrupt() const { return interrupt_ == PeInterrupt::AllRays; }
@@ -130,10 +134,13 @@ class GridRtIntersector : public Intersector {
     int cull_stride;
     cl::Buffer seg_planes;
     int seg_stride;
+    cl::Buffer set_frames, set_planes;
+    int set_stride, sets_enabled;
     auto inOrder() const {
       return std::tie(tasks, planes, stride, common_origin, common, grid, pe_box, pe_tri_begin,
                       pe_tris, results, lanes, first_hit_key, any_hit, interrupt, cull, cull_planes,
-                      cull_stride, seg_planes, seg_stride);
+                      cull_stride, seg_planes, seg_stride, set_frames, set_planes, set_stride,
+                      sets_enabled);
     }
   };
   KernelCall<ListsKernelArgs> kernel_;
@@ -185,9 +192,11 @@ class GridRtIntersector : public Intersector {
   };
   // interrupt: the kernel skips lanes an earlier PE has hit (the batch's bundles put
   // nearer PEs first, camera_bundles.h).
+  // light_culling: the tasks' cull_set faces use light_cull_cache_'s boxes (uploaded).
   void intersectBundles(const std::vector<GrRay>& rays, const RayBundles& bundles, HitMode mode,
                         bool interrupt, std::vector<GrHit>& hits, RayDiagnostics* diagnostics,
-                        const GrCullFrame* cull_frame = nullptr, const PlaneFill* fill = nullptr);
+                        const GrCullFrame* cull_frame = nullptr, const PlaneFill* fill = nullptr,
+                        bool light_culling = false);
   // The frame the kernel gets for this batch (enabled 0 unless culling is allowed: common
   // origin, every ray covered by the frame); uploads the PE triangles' boxes when they
   // changed.
@@ -196,6 +205,7 @@ class GridRtIntersector : public Intersector {
   CameraBundleScratch camera_scratch_;
   std::vector<std::vector<float>> camera_rows_;  // per thread: one row's directions (x, y, z)
   bool force_light_bundles_ = false;
+  bool light_culling_allowed_ = true;
   bool packet_culling_used_ = false;
   RayBundles light_bundles_;
   LightBundleScratch light_scratch_;
@@ -203,6 +213,10 @@ class GridRtIntersector : public Intersector {
   // Packet culling: the PE triangles' boxes (in pe_triangles order) and their device copy.
   CullPlaneCache cull_cache_;
   DeviceBuffer<float> cull_planes_{"the culling boxes", CL_MEM_READ_ONLY};
+  // Light culling (light_culling.h): each cube face's frame and boxes, and their copies.
+  LightCullCache light_cull_cache_;
+  DeviceBuffer<float> light_cull_planes_{"the light culling boxes", CL_MEM_READ_ONLY};
+  DeviceBuffer<GrCullFrame> light_cull_frames_{"the light culling frames", CL_MEM_READ_ONLY};
   // Segment culling: the PE triangles' planes (segment_culling.h), uploaded once.
   DeviceBuffer<float> seg_planes_{"the segment culling planes", CL_MEM_READ_ONLY};
   int seg_stride_ = 0;

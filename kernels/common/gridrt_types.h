@@ -80,13 +80,15 @@ typedef struct {
  * sit next to each other, stored as planes (structure of arrays), tested 16 at a time. A task is
  * one work-group's share of one PE: the bundle-order rays [first_ray, first_ray + ray_count), whose
  * 16-ray packets write their results from lane out_first (a multiple of 16) and their masks from
- * packet out_first / 16. */
+ * packet out_first / 16. cull_set: for rays towards a light, the cube face (0..5) whose culling
+ * frame and boxes (host/gridrt/culling/light_culling.h) serve the task's rays; -1 for none. */
 typedef struct {
   int pe;
   int first_ray;
   int ray_count;
   int out_first;
-} GrBundleTask; /* 16 bytes */
+  int cull_set;
+} GrBundleTask; /* 20 bytes */
 
 /* Phase 1's results, one buffer a batch, for both kernels: planes of `lanes` values each
  * (packet p's lane k at p * 16 + k), t, prim, u and v (written for the packets with a
@@ -191,7 +193,7 @@ static_assert(sizeof(GrTriangle) == 48, "GrTriangle layout");
 static_assert(sizeof(GrHit) == 16, "GrHit layout");
 static_assert(sizeof(GrGridInfo) == 48, "GrGridInfo layout");
 static_assert(sizeof(GrPeTask) == 16, "GrPeTask layout");
-static_assert(sizeof(GrBundleTask) == 16, "GrBundleTask layout");
+static_assert(sizeof(GrBundleTask) == 20, "GrBundleTask layout");
 static_assert(sizeof(GrPacketMasks) == 16, "GrPacketMasks layout");
 static_assert(sizeof(GrCullFrame) == 48, "GrCullFrame layout");
 static_assert(sizeof(GrVoxelBox) == 24, "GrVoxelBox layout");

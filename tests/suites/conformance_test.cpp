@@ -687,10 +687,11 @@ TEST_F(Conformance, LightBundlesWithTheLightOnAGridVertex) {
 
 // The kernels count the ray-triangle tests they run (IntersectCounters::tests_run). With
 // nothing to cull (PEs of one triangle, below the segment culling's minimum, on the list
-// path and the light bundles; no culling frame) that is every tested pair's triangles,
-// the paper's count (IntersectCounters::tests); where packet and segment culling work
-// (camera rays on bunny_res4, PEs of up to 52 triangles, through either path) it is far
-// less, but never less than one test a hit.
+// path and the light bundles without light culling; no culling frame) that is every
+// tested pair's triangles, the paper's count (IntersectCounters::tests); where light
+// culling works on those PEs, and packet and segment culling on camera rays on bunny_res4
+// (PEs of up to 52 triangles, through either path), it is less, but never less than one
+// test a hit.
 TEST_F(Conformance, TheKernelsCountTheTestsTheyRunAfterCulling) {
   std::vector<GrTriangle> lattice;
   const int n = 8;
@@ -725,9 +726,15 @@ TEST_F(Conformance, TheKernelsCountTheTestsTheyRunAfterCulling) {
   }
   GridRtIntersector bundles(*runtime_, grid, PeInterrupt::Off);
   bundles.forceLightBundles();
+  bundles.allowLightCulling(false);
   bundles.intersectTowardsPoint(light, shadow, HitMode::Closest, hits);
   EXPECT_GT(hitsOf(hits), 1000u);
   EXPECT_EQ(bundles.counters().tests_run, bundles.counters().tests) << "light bundles";
+  GridRtIntersector light_culled(*runtime_, grid, PeInterrupt::Off);
+  light_culled.forceLightBundles();
+  light_culled.intersectTowardsPoint(light, shadow, HitMode::Closest, hits);
+  EXPECT_GE(light_culled.counters().tests_run, hitsOf(hits)) << "light culling";
+  EXPECT_LT(light_culled.counters().tests_run, light_culled.counters().tests) << "light culling";
 
   Scene scene = loadGltfFile(test::modelScene("bunny_res4.glb"));
   auto tris = prepareTriangles(scene);

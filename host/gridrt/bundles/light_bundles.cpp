@@ -82,8 +82,8 @@ float missOfLight(const GrRay& ray, const glm::vec3& light) {
          kLightEndRoundingEpsilons * std::numeric_limits<float>::epsilon() * reach;
 }
 
-void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRay* rays,
-                     size_t count, RayBundles& bundles, LightBundleScratch& scratch) {
+LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRay* rays,
+                               size_t count, RayBundles& bundles, LightBundleScratch& scratch) {
   // Each ray's face and point on it, the faces' occupied windows, and how far the rays'
   // ends lie from the light.
   scratch.face_of.resize(count);
@@ -91,17 +91,23 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
   const int slices = parallelSliceCount();
   auto& thread_windows = scratch.thread_windows;
   thread_windows.assign(slices, std::array<FaceWindow, 6>{});
-  std::vector<float> slice_miss(slices, 0.0f);
+  std::vector<float> slice_miss(slices, 0.0f), slice_reach(slices, 0.0f),
+      slice_length(slices, INFINITY);
   parallelSlices(slices, [&](int me, int n) {
     // Accumulated in locals and stored once: the slices' slots share cache lines.
     std::array<FaceWindow, 6> windows{};
-    float miss = 0.0f;
+    float miss = 0.0f, reach = 0.0f, min_length = INFINITY;
     const auto [r0, r1] = sliceRange(count, me, n);
     for (size_t r = r0; r < r1; ++r) {
       const GrRay& ray = rays[r];
       const glm::vec3 d(ray.dx, ray.dy, ray.dz);
       const float off = missOfLight(ray, light);
       miss = std::max(miss, std::isfinite(off) ? off : INFINITY);
+      const float ray_reach =
+          std::fabs(ray.ox) + std::fabs(ray.oy) + std::fabs(ray.oz) + std::fabs(ray.tmax);
+      reach = std::max(reach, std::isfinite(ray_reach) ? ray_reach : INFINITY);
+      const float length = glm::length(d);
+      min_length = std::min(min_length, length == length ? length : 0.0f);
       int face = 0;
       float u = 0.0f, v = 0.0f;
       if (!onFace(-d, face, u, v)) face = 0;  // no direction: any cell will do
@@ -112,8 +118,13 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
     }
     thread_windows[me] = windows;
     slice_miss[me] = miss;
+    slice_reach[me] = reach;
+    slice_length[me] = min_length;
   });
-  const float miss = *std::max_element(slice_miss.begin(), slice_miss.end());
+  LightRayBounds bounds;
+  const float miss = bounds.miss = *std::max_element(slice_miss.begin(), slice_miss.end());
+  bounds.reach = *std::max_element(slice_reach.begin(), slice_reach.end());
+  bounds.min_length = *std::min_element(slice_length.begin(), slice_length.end());
   // Each face's cells cover the window its rays occupy, about kLightRaysPerCell a cell.
   std::array<FaceWindow, 6>& faces = scratch.faces;
   faces = thread_windows[0];
@@ -177,7 +188,7 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
       const size_t row_cell = fw.first_cell + size_t(r) * fw.res;
       const int first = start[row_cell + c0], last = start[row_cell + c1];
       if (last > first)
-        runs.push_back(LightBundleScratch::Run{pe, fw.first_row + r, first, last - first});
+        runs.push_back(LightBundleScratch::Run{pe, fw.first_row + r, first, last - first, face});
     };
     const auto [pe_begin, pe_end] = sliceRange(size_t(pes), me, count);
     for (int pe = int(pe_begin); pe < int(pe_end); ++pe) {
@@ -240,7 +251,9 @@ void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRa
   for (const auto& runs : scratch.thread_runs)
     for (const auto& run : runs) scratch.sorted[row_start[run.row]++] = run;
   bundles.clearTasks();
-  for (const auto& run : scratch.sorted) bundles.addRange(run.pe, run.first, run.count);
+  for (const auto& run : scratch.sorted) bundles.addRange(run.pe, run.first, run.count, run.face);
+  for (int f = 0; f < 6; ++f) bounds.faces[f] = faces[f].res > 0;
+  return bounds;
 }
 
 }  // namespace gridrt

@@ -68,8 +68,9 @@ struct LightBundleScratch {
   std::vector<std::vector<int>> thread_counts;  // per thread and cell (parallel sort)
   std::vector<std::array<FaceWindow, 6>> thread_windows;
   struct Run {
-    int pe, row;  // row: face * R + cell row
+    int pe, row;  // row: the face's first row + cell row
     int first, count;
+    int face;
   };
   std::vector<std::vector<Run>> thread_runs;
   std::vector<size_t> row_start;
@@ -81,7 +82,16 @@ struct LightBundleScratch {
 // without an end; the caller counts that as an infinite miss).
 float missOfLight(const GrRay& ray, const glm::vec3& light);
 
-void bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRay* rays,
-                     size_t count, RayBundles& bundles, LightBundleScratch& scratch);
+// What light culling (light_culling.h) needs to know of a batch of rays towards a light.
+struct LightRayBounds {
+  float miss = 0.0f;            // the largest missOfLight (infinite: a ray ends nowhere near it)
+  float reach = 0.0f;           // the largest |o|_1 + |tmax| of a ray
+  float min_length = INFINITY;  // the shortest |d| of a ray
+  std::array<bool, 6> faces{};  // the cube faces that hold rays
+};
+
+// Each task's cull_set is the cube face of its rays.
+LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRay* rays,
+                               size_t count, RayBundles& bundles, LightBundleScratch& scratch);
 
 }  // namespace gridrt

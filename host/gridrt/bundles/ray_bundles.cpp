@@ -4,7 +4,7 @@
 
 namespace gridrt {
 
-void RayBundles::addRange(int pe, int first, int count) {
+void RayBundles::addRange(int pe, int first, int count, int cull_set) {
   constexpr int kMaxTaskRays = kMaxTaskPackets * GR_PACKET_LANES;
   for (int k = 0; k < count; k += kMaxTaskRays) {
     int n = std::min(kMaxTaskRays, count - k);
@@ -15,7 +15,7 @@ void RayBundles::addRange(int pe, int first, int count) {
       chunk_begin.push_back(tasks.size());
       chunk_lanes.push_back(0);
     }
-    tasks.push_back(GrBundleTask{pe, first + k, n, int(chunk_lanes.back())});
+    tasks.push_back(GrBundleTask{pe, first + k, n, int(chunk_lanes.back()), cull_set});
     chunk_lanes.back() += lanes;
     chunk_begin.back() = tasks.size();
     out_lanes += lanes;

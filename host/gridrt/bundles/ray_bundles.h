@@ -35,8 +35,9 @@ struct RayBundles {
       (size_t(1) << 31) - 2 * kMaxTaskPackets * GR_PACKET_LANES;
 
   // Queues PE `pe` for the bundle rays [first, first + count), split into tasks of at
-  // most kMaxTaskPackets packets, each with its own result lanes.
-  void addRange(int pe, int first, int count);
+  // most kMaxTaskPackets packets, each with its own result lanes; cull_set as in
+  // GrBundleTask.
+  void addRange(int pe, int first, int count, int cull_set = -1);
   void clearTasks() {
     tasks.clear();
     out_lanes = 0;

@@ -15,6 +15,7 @@
 
 #include "gridrt_types.h"
 #include "pinhole_view.h"
+#include "segment_culling.h"
 
 namespace gridrt {
 
@@ -59,6 +60,28 @@ inline bool cullFrameCovers(const GrCullFrame& f, const GrRay& ray) {
 void computeCullBoxes(const GrCullFrame& frame, const glm::vec3& origin,
                       const std::vector<GrTriangle>& triangles, std::vector<CullBox>& boxes,
                       double error_factor = kCullErrorFactor);
+
+// Rays that end at the origin instead of starting there (shadow rays towards a point
+// light, light_culling.h), each from its own point: a ray's line passes within `miss` of
+// the origin, |o|_1 + |tmax| <= ray_reach and |d| >= min_length. Their boxes are grown by
+// what those bounds allow (boxesOfBlock in packet_culling.cpp); segment_error_factor is
+// kSegmentCullErrorFactor but for tests.
+struct TowardsOrigin {
+  double miss = 0.0, ray_reach = 0.0, min_length = 1.0;
+  double segment_error_factor = kSegmentCullErrorFactor;
+};
+
+// The boxes of `triangles` for rays towards `origin` (TowardsOrigin). For tests.
+void computeTowardsOriginBoxes(const GrCullFrame& frame, const glm::vec3& origin,
+                               const TowardsOrigin& towards,
+                               const std::vector<GrTriangle>& triangles,
+                               std::vector<CullBox>& boxes, double error_factor = kCullErrorFactor);
+
+// Their four planes (as CullPlaneCache's) from `planes` on, each `stride` floats apart, on
+// all cores; the padding is the caller's.
+void writeTowardsOriginBoxPlanes(const GrCullFrame& frame, const glm::vec3& origin,
+                                 const TowardsOrigin& towards, const GrTriangle* triangles,
+                                 size_t count, float* planes, size_t stride);
 
 // The padding after each plane of boxes: the PE kernel reads a float16 of boxes at a time,
 // so its last load of a PE may run 15 boxes past the end.
