@@ -73,6 +73,13 @@ void FaceWindow::cellRange(float lo, float hi, float origin, float scale, int& c
   c1 = std::min(res, int(cell(hi)) + 1);
 }
 
+double originDepth(const GrRay& ray, const glm::vec3& light, int face) {
+  const int a = face / 2;
+  const double o[3] = {ray.ox, ray.oy, ray.oz};
+  const double depth = face % 2 ? double(light[a]) - o[a] : o[a] - double(light[a]);
+  return std::isnan(depth) ? INFINITY : depth;
+}
+
 float missOfLight(const GrRay& ray, const glm::vec3& light) {
   const glm::vec3 end =
       glm::vec3(ray.ox, ray.oy, ray.oz) + ray.tmax * glm::vec3(ray.dx, ray.dy, ray.dz);
@@ -88,6 +95,7 @@ LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, 
   // ends lie from the light.
   scratch.face_of.resize(count);
   scratch.uv.resize(2 * count);
+  scratch.depth.resize(count);
   const int slices = parallelSliceCount();
   auto& thread_windows = scratch.thread_windows;
   thread_windows.assign(slices, std::array<FaceWindow, 6>{});
@@ -114,6 +122,7 @@ LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, 
       scratch.face_of[r] = face;
       scratch.uv[2 * r] = u;
       scratch.uv[2 * r + 1] = v;
+      scratch.depth[r] = originDepth(ray, light, face);
       windows[face].add(u, v);
     }
     thread_windows[me] = windows;
@@ -150,11 +159,24 @@ LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, 
   start.assign(cells + 1, 0);
   bundles.ray_of.resize((count + GR_PACKET_LANES - 1) / GR_PACKET_LANES * GR_PACKET_LANES);
   scratch.thread_counts.resize(slices);
+  scratch.thread_deepest.resize(slices);
   parallelSlices(slices, [&](int me, int n) {
     const auto [r0, r1] = sliceRange(count, me, n);
     std::vector<int>& mine = scratch.thread_counts[me];
+    std::vector<double>& deepest = scratch.thread_deepest[me];
     mine.assign(cells, 0);
-    for (size_t r = r0; r < r1; ++r) ++mine[scratch.cell_of[r]];
+    deepest.assign(cells, -INFINITY);
+    for (size_t r = r0; r < r1; ++r) {
+      const int cell = scratch.cell_of[r];
+      ++mine[cell];
+      deepest[cell] = std::max(deepest[cell], scratch.depth[r]);
+    }
+  });
+  // Each cell's deepest origin (light_bundles.h): the slices' maxima, in parallel by cell.
+  std::vector<double>& deepest = scratch.thread_deepest[0];
+  parallelFor(size_t(0), cells, [&](size_t c) {
+    for (int t = 1; t < slices; ++t)
+      deepest[c] = std::max(deepest[c], scratch.thread_deepest[t][c]);
   });
   int offset = 0;
   for (size_t c = 0; c < cells; ++c) {
@@ -183,11 +205,27 @@ LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, 
     // A vector of the slice's own while it grows (false sharing, camera_bundles.cpp).
     auto runs = std::move(scratch.thread_runs[me]);
     runs.clear();
-    auto addRow = [&](int pe, int face, int r, int c0, int c1) {
+    // The cells [c0, c1) of row r, less those whose rays all start nearer to the light
+    // than `near` (the box's nearest depth on this face): the runs of the others, where
+    // a gap of fewer rays than a packet stays in the run (a task more would cost more).
+    auto addRow = [&](int pe, int face, int r, int c0, int c1, double near) {
       const FaceWindow& fw = faces[face];
       const size_t row_cell = fw.first_cell + size_t(r) * fw.res;
-      const int first = start[row_cell + c0], last = start[row_cell + c1];
-      if (last > first)
+      int first = -1, last = -1;  // the run being made, in bundle order
+      for (int c = c0; c < c1;) {
+        while (c < c1 && deepest[row_cell + c] < near) ++c;
+        const int run_begin = c;
+        while (c < c1 && !(deepest[row_cell + c] < near)) ++c;
+        const int begin = start[row_cell + run_begin], end = start[row_cell + c];
+        if (end == begin) continue;
+        if (first >= 0 && begin - last >= GR_PACKET_LANES) {
+          runs.push_back(LightBundleScratch::Run{pe, fw.first_row + r, first, last - first, face});
+          first = -1;
+        }
+        if (first < 0) first = begin;
+        last = end;
+      }
+      if (first >= 0)
         runs.push_back(LightBundleScratch::Run{pe, fw.first_row + r, first, last - first, face});
     };
     const auto [pe_begin, pe_end] = sliceRange(size_t(pes), me, count);
@@ -198,7 +236,8 @@ LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, 
       hi += slack;
       if (!std::isfinite(slack)) {  // rays that do not end anywhere near the light
         for (int face = 0; face < 6; ++face)
-          for (int r = 0; r < faces[face].res; ++r) addRow(pe, face, r, 0, faces[face].res);
+          for (int r = 0; r < faces[face].res; ++r)
+            addRow(pe, face, r, 0, faces[face].res, -INFINITY);
         continue;
       }
       for (int face = 0; face < 6; ++face) {
@@ -216,6 +255,9 @@ LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, 
         else
           bhi[a] = std::min(bhi[a], light[a]);
         if (!(blo[a] <= bhi[a])) continue;
+        // The box's nearest depth on this face (as originDepth: exact in double).
+        const double near =
+            s > 0.0f ? double(blo[a]) - double(light[a]) : double(light[a]) - double(bhi[a]);
         float umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
         for (int k = 0; k < 8; ++k) {
           const glm::vec3 p(k & 1 ? bhi.x : blo.x, k & 2 ? bhi.y : blo.y, k & 4 ? bhi.z : blo.z);
@@ -235,7 +277,7 @@ LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, 
         int c0, c1, r0, r1;
         fw.cellRange(umin, umax, fw.u0, fw.su, c0, c1);
         fw.cellRange(vmin, vmax, fw.v0, fw.sv, r0, r1);
-        for (int r = r0; r < r1; ++r) addRow(pe, face, r, c0, c1);
+        for (int r = r0; r < r1; ++r) addRow(pe, face, r, c0, c1, near);
       }
     }
     scratch.thread_runs[me] = std::move(runs);

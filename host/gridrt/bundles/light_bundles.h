@@ -5,6 +5,13 @@
 // receives, per cell row its voxel covers on a face, the run of rays in the covered
 // cells; the kernel's slab test keeps the pairs of the traversal lists.
 //
+// A ray heads towards the light, so no point of it lies deeper (further from the light
+// along its face's axis) than its origin: a PE receives, of the covered cells, only those
+// holding a ray whose origin lies at least as deep as the PE's box, grown as above
+// (shadow rays from the lit side of a model skip the PEs behind it: on the bunny 77 % of
+// the lanes went to such PEs). Both depths are differences of floats taken in double,
+// exact but where the two differ by more than 2^29 in magnitude, so no margin is added.
+//
 // Conservative by construction: a ray through a point q of a voxel whose end lies within m
 // of the light points away from the light exactly as the direction from the light to a
 // point within m of q does. So the voxel is grown by the largest such m (measured on the
@@ -60,8 +67,10 @@ struct FaceWindow {
 };
 
 struct LightBundleScratch {
-  std::vector<int> face_of;  // per ray
-  std::vector<float> uv;     // per ray, its point on the face
+  std::vector<int> face_of;                         // per ray
+  std::vector<float> uv;                            // per ray, its point on the face
+  std::vector<double> depth;                        // per ray, originDepth
+  std::vector<std::vector<double>> thread_deepest;  // per thread and cell; [0]: the cells'
   std::array<FaceWindow, 6> faces;
   std::vector<int> cell_of;                     // per ray
   std::vector<int> cell_start;                  // counting sort by cell, then the run starts
@@ -81,6 +90,10 @@ struct LightBundleScratch {
 // of its float end plus kLightEndRoundingEpsilons of its rounding (not finite for a ray
 // without an end; the caller counts that as an infinite miss).
 float missOfLight(const GrRay& ray, const glm::vec3& light);
+
+// How far the origin of `ray` lies from `light` along the axis of cube face `face`, outwards
+// (+infinity for NaN: such a ray is never left out).
+double originDepth(const GrRay& ray, const glm::vec3& light, int face);
 
 // What light culling (light_culling.h) needs to know of a batch of rays towards a light.
 struct LightRayBounds {

@@ -1,11 +1,16 @@
 // Light bundles' cells (host/gridrt/bundles/light_bundles.h): the cells a voxel's projected outline
-// covers must hold every ray whose face coordinate lies in the outline up to rounding.
+// covers must hold every ray whose face coordinate lies in the outline up to rounding; a PE
+// behind every ray's origin (further from the light) receives none of them.
 #include "light_bundles.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <set>
+
+#include "prepared_triangles.h"
+#include "uniform_grid.h"
 
 namespace gridrt {
 namespace {
@@ -108,6 +113,49 @@ TEST(LightBundles, MissOfLightBoundsTheExactEndsDistance) {
   }
   EXPECT_EQ(float_end_on_light, 10000);
   EXPECT_EQ(short_of_exact, 0);
+}
+
+// Two layers of triangles under a light: shadow rays start on the upper layer's plane,
+// so the lower layer's PEs lie behind every origin (seen from the light) and receive none
+// of them, though their outlines on the light's cube cover the same cells; the upper
+// layer's PEs, whose boxes reach up to the origins' plane, receive them all. Without the
+// depth test the lower PEs receive as many rays as the upper ones.
+TEST(LightBundles, PesBehindEveryOriginReceiveNoRays) {
+  std::vector<GrTriangle> tris;
+  for (float y : {1.0f, 3.0f})
+    for (int x = 0; x < 4; ++x)
+      for (int z = 0; z < 4; ++z) {
+        const glm::vec3 v[3] = {
+            {x + 0.1f, y, z + 0.1f}, {x + 0.9f, y, z + 0.1f}, {x + 0.5f, y, z + 0.9f}};
+        tris.push_back(prepareTriangle(v, int(tris.size())));
+      }
+  GridSettings settings;
+  settings.automatic = false;
+  settings.dims = {4, 4, 4};
+  Bounds box;
+  box.grow(glm::vec3(0.0f));
+  box.grow(glm::vec3(4.0f));
+  const UniformGrid grid = buildUniformGrid(tris, box, settings);
+  const glm::vec3 light(2.0f, 10.0f, 2.0f);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> unit(0.1f, 3.9f);
+  std::vector<GrRay> rays;
+  for (int k = 0; k < 4000; ++k) {
+    const glm::vec3 o(unit(rng), 3.0f, unit(rng)), to = light - o;
+    const glm::vec3 d = glm::normalize(to);
+    rays.push_back(GrRay{o.x, o.y, o.z, 1e-4f, d.x, d.y, d.z, glm::length(to)});
+  }
+  RayBundles bundles;
+  LightBundleScratch scratch;
+  bundleLightRays(grid, light, rays.data(), rays.size(), bundles, scratch);
+  size_t lower = 0, upper = 0;
+  for (const GrBundleTask& task : bundles.tasks) {
+    glm::vec3 lo, hi;
+    grid.hullOfPe(task.pe, lo, hi);
+    (hi.y < 2.0f ? lower : upper) += size_t(task.ray_count);
+  }
+  EXPECT_EQ(lower, 0u);
+  EXPECT_GE(upper, rays.size());
 }
 
 }  // namespace
