@@ -5,6 +5,8 @@
 #include <limits>
 #include <string>
 
+#include "prefault.h"
+
 namespace gridrt::gltf {
 namespace {
 
@@ -66,6 +68,35 @@ bool liftCompressedMembers(nlohmann::json& doc, bool binary, CompressedInput& in
   return !input.draco_indices.empty() || !input.placeholder_buffers.empty();
 }
 
+// Buffer 0's bytes in a .glb's binary chunk, when they may be set aside (the header
+// comment of prepareCompressedInput); null otherwise.
+const unsigned char* binaryToSetAside(const nlohmann::json& doc, const unsigned char* data,
+                                      size_t size, size_t& bytes) {
+  uint32_t json_length = 0, chunk_length = 0, chunk_type = 0;
+  if (size < 20) return nullptr;
+  std::memcpy(&json_length, data + 12, 4);
+  const size_t chunk = 20 + size_t(json_length);  // the binary chunk's header
+  if (chunk + 8 > size) return nullptr;
+  std::memcpy(&chunk_length, data + chunk, 4);
+  std::memcpy(&chunk_type, data + chunk + 4, 4);
+  // tinygltf's checks of the chunk (LoadBinaryFromMemory): left to it to refuse.
+  if (chunk_type != 0x004E4942u || chunk_length % 4 != 0 || chunk_length < kSetAsideBinaryBytes ||
+      chunk_length > size - chunk - 8)
+    return nullptr;
+  const nlohmann::json* buffers = member(doc, "buffers");
+  if (!buffers || !buffers->is_array() || buffers->empty()) return nullptr;
+  const nlohmann::json& buffer = (*buffers)[0];
+  const nlohmann::json* length = member(buffer, "byteLength");
+  if (!buffer.is_object() || buffer.contains("uri") || !length || !length->is_number_unsigned() ||
+      length->get<uint64_t>() > chunk_length)
+    return nullptr;
+  if (const nlohmann::json* images = member(doc, "images"); images && images->is_array())
+    for (const auto& image : *images)
+      if (member(image, "bufferView")) return nullptr;
+  bytes = size_t(length->get<uint64_t>());
+  return data + chunk + 8;
+}
+
 void appendUint32(std::vector<unsigned char>& out, uint32_t value) {
   unsigned char bytes[4];
   std::memcpy(bytes, &value, 4);  // GLB is little-endian, like our hosts
@@ -79,14 +110,21 @@ CompressedInput prepareCompressedInput(const nlohmann::json& doc, const unsigned
   CompressedInput input;
   if (!doc.is_object()) return input;
   nlohmann::json changed = doc;
-  if (!liftCompressedMembers(changed, binary, input)) return input;
+  const bool lifted = liftCompressedMembers(changed, binary, input);
+  if (binary) input.glb_binary = binaryToSetAside(doc, data, size, input.glb_binary_bytes);
+  if (input.glb_binary) {
+    changed["buffers"][0]["uri"] = kPlaceholderUri;
+    changed["buffers"][0]["byteLength"] = 1;
+  }
+  if (!lifted && !input.glb_binary) return input;
   std::string json = changed.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   if (!binary) {
     input.bytes.assign(json.begin(), json.end());
     return input;
   }
   // A .glb: header (magic, version, length), the JSON chunk (length, type, text padded
-  // with spaces to 4 bytes), then the file's other chunks as they are.
+  // with spaces to 4 bytes), then the file's other chunks as they are (none when the binary
+  // chunk is set aside: a .glb without one is valid).
   uint32_t json_length = 0;
   if (size >= 20) std::memcpy(&json_length, data + 12, 4);
   if (size < 20 || json_length > size - 20) return {};
@@ -96,13 +134,20 @@ CompressedInput prepareCompressedInput(const nlohmann::json& doc, const unsigned
   appendUint32(input.bytes, uint32_t(json.size()));
   input.bytes.insert(input.bytes.end(), data + 16, data + 20);  // the chunk type
   input.bytes.insert(input.bytes.end(), json.begin(), json.end());
-  input.bytes.insert(input.bytes.end(), data + rest, data + size);
+  if (!input.glb_binary) input.bytes.insert(input.bytes.end(), data + rest, data + size);
   const uint32_t total = uint32_t(input.bytes.size());
   std::memcpy(input.bytes.data() + 8, &total, 4);
   return input;
 }
 
 void restoreCompressedInput(const CompressedInput& input, tinygltf::Model& model) {
+  if (input.glb_binary && !model.buffers.empty()) {
+    std::vector<unsigned char>& data = model.buffers[0].data;
+    data.clear();
+    reserveFaultedIn(data, input.glb_binary_bytes);  // on every core (prefault.h)
+    data.assign(input.glb_binary, input.glb_binary + input.glb_binary_bytes);
+    model.buffers[0].uri.clear();
+  }
   for (const auto& lifted : input.draco_indices)
     if (lifted.mesh < model.meshes.size() &&
         lifted.primitive < model.meshes[lifted.mesh].primitives.size())

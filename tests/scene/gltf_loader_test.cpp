@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "errors.h"
+#include "gltf_compressed_input.h"
 #include "gltf_document_builder.h"
 #include "test_support.h"
 
@@ -79,6 +80,13 @@ class GltfBuilder {
              ",\"uri\":\"data:application/octet-stream;base64," + base64(bin_) + "\"}]" +
              ",\"bufferViews\":[" + join(views_) + "],\"accessors\":[" + join(accessors_) + "]";
     return doc + (rest.empty() ? "" : "," + rest) + "}";
+  }
+  // The same document as a .glb, buffer 0 its binary chunk.
+  std::string glb(const std::string& rest) const {
+    return test::makeGlb("{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":" +
+                             std::to_string(bin_.size()) + "}]," + viewsAndAccessors() +
+                             (rest.empty() ? "" : "," + rest) + "}",
+                         bin_);
   }
   const std::string& bin() const { return bin_; }
   std::string viewsAndAccessors() const {
@@ -775,36 +783,85 @@ TEST(GltfLoader, AManyTriangleMeshIsReadInOrderOnAllCores) {
       "\"translation\":[0,0,2]}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":" +
       std::to_string(pos) + ",\"NORMAL\":" + std::to_string(normal) +
       ",\"COLOR_0\":" + std::to_string(colour) + "}}]}]";
-  const Scene s = loadJson(b.json(rest));
-  size_t kept = 0, nans = 0, flat = 0;
-  for (size_t t = 0; t < kTriangles; ++t) {
-    if (dropsNan(t)) {
-      ++nans;
-      continue;
+  // As a .gltf (a data URI) and as a .glb whose binary chunk (3 MB) is set aside
+  // (gltf_compressed_input.h).
+  const std::string glb = b.glb(rest);
+  ASSERT_GE(b.bin().size(), gltf::kSetAsideBinaryBytes);
+  for (const Scene& s : {loadJson(b.json(rest)),
+                         loadGltfFromMemory(reinterpret_cast<const unsigned char*>(glb.data()),
+                                            glb.size(), "", "many.glb")}) {
+    size_t kept = 0, nans = 0, flat = 0;
+    for (size_t t = 0; t < kTriangles; ++t) {
+      if (dropsNan(t)) {
+        ++nans;
+        continue;
+      }
+      if (dropsArea(t)) {
+        ++flat;
+        continue;
+      }
+      ASSERT_LT(kept, s.triangleCount());
+      // Mirrored by the node: corners 1 and 2 swap places.
+      const size_t from[3] = {3 * t, 3 * t + 2, 3 * t + 1};
+      for (int k = 0; k < 3; ++k) {
+        const size_t v = from[k];
+        const glm::vec3 want(-xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2] + 2.0f);
+        ASSERT_EQ(s.positions[3 * kept + size_t(k)], want) << "triangle " << t;
+        ASSERT_EQ(s.normals[3 * kept + size_t(k)], glm::vec3(-1, 0, 0)) << "triangle " << t;
+        ASSERT_EQ(s.colors[3 * kept + size_t(k)],
+                  glm::vec4(rgb[3 * v], rgb[3 * v + 1], rgb[3 * v + 2], 1.0f))
+            << "triangle " << t;
+      }
+      ++kept;
     }
-    if (dropsArea(t)) {
-      ++flat;
-      continue;
-    }
-    ASSERT_LT(kept, s.triangleCount());
-    // Mirrored by the node: corners 1 and 2 swap places.
-    const size_t from[3] = {3 * t, 3 * t + 2, 3 * t + 1};
-    for (int k = 0; k < 3; ++k) {
-      const size_t v = from[k];
-      const glm::vec3 want(-xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2] + 2.0f);
-      ASSERT_EQ(s.positions[3 * kept + size_t(k)], want) << "triangle " << t;
-      ASSERT_EQ(s.normals[3 * kept + size_t(k)], glm::vec3(-1, 0, 0)) << "triangle " << t;
-      ASSERT_EQ(s.colors[3 * kept + size_t(k)],
-                glm::vec4(rgb[3 * v], rgb[3 * v + 1], rgb[3 * v + 2], 1.0f))
-          << "triangle " << t;
-    }
-    ++kept;
+    EXPECT_EQ(s.triangleCount(), kept);
+    EXPECT_EQ(s.colors.size(), 3 * kept);
+    EXPECT_EQ(s.normals.size(), 3 * kept);
+    EXPECT_EQ(s.dropped_degenerate, nans);
+    EXPECT_EQ(s.dropped_zero_area, flat);
   }
-  EXPECT_EQ(s.triangleCount(), kept);
-  EXPECT_EQ(s.colors.size(), 3 * kept);
-  EXPECT_EQ(s.normals.size(), 3 * kept);
-  EXPECT_EQ(s.dropped_degenerate, nans);
-  EXPECT_EQ(s.dropped_zero_area, flat);
+}
+
+// A large .glb's binary chunk is set aside from what tinygltf parses (no binary chunk in
+// its bytes, buffer 0 a one-byte placeholder) and put back as buffer 0 after; not when an
+// image reads a buffer view, when the chunk is small, or when buffer 0 has a uri or is
+// longer than the chunk (tinygltf then says why).
+TEST(GltfLoader, ALargeGlbsBinaryChunkIsSetAsideWhileTinygltfParses) {
+  const std::string bin(gltf::kSetAsideBinaryBytes, '\x5a');
+  auto glbOf = [&](const std::string& buffer, const std::string& more, const std::string& data) {
+    return makeGlb("{\"asset\":{\"version\":\"2.0\"},\"buffers\":[" + buffer + "]" + more + "}",
+                   data);
+  };
+  auto prepared = [](const std::string& glb) {
+    const auto* data = reinterpret_cast<const unsigned char*>(glb.data());
+    uint32_t json_length = 0;
+    std::memcpy(&json_length, glb.data() + 12, 4);
+    const std::string_view json(glb.data() + 20, json_length);
+    return gltf::prepareCompressedInput(nlohmann::json::parse(json), data, glb.size(), true);
+  };
+  const std::string length = "{\"byteLength\":" + std::to_string(bin.size() - 8) + "}";
+  const std::string plain = glbOf(length, "", bin);
+  const gltf::CompressedInput input = prepared(plain);
+  ASSERT_NE(input.glb_binary, nullptr);
+  EXPECT_EQ(input.glb_binary,
+            reinterpret_cast<const unsigned char*>(plain.data()) + plain.size() - bin.size());
+  EXPECT_EQ(input.glb_binary_bytes, bin.size() - 8);
+  EXPECT_LT(input.bytes.size(), 1000u);  // header and JSON only
+  tinygltf::Model model;
+  model.buffers.resize(1);
+  model.buffers[0].data = {0};
+  model.buffers[0].uri = "data:application/octet-stream;base64,AA==";
+  gltf::restoreCompressedInput(input, model);
+  EXPECT_EQ(model.buffers[0].data, std::vector<unsigned char>(bin.size() - 8, 0x5a));
+  EXPECT_TRUE(model.buffers[0].uri.empty());
+
+  const std::string image = ",\"images\":[{\"bufferView\":0,\"mimeType\":\"image/png\"}]";
+  EXPECT_EQ(prepared(glbOf(length, image, bin)).glb_binary, nullptr);
+  EXPECT_EQ(prepared(glbOf(length, "", bin.substr(0, bin.size() / 2))).glb_binary, nullptr);
+  EXPECT_EQ(prepared(glbOf("{\"byteLength\":8,\"uri\":\"x.bin\"}", "", bin)).glb_binary, nullptr);
+  EXPECT_EQ(prepared(glbOf("{\"byteLength\":" + std::to_string(bin.size() + 4) + "}", "", bin))
+                .glb_binary,
+            nullptr);
 }
 
 // Indices are checked on all cores: of several out of range, the first is reported.
