@@ -68,15 +68,22 @@ bool liftCompressedMembers(nlohmann::json& doc, bool binary, CompressedInput& in
   return !input.draco_indices.empty() || !input.placeholder_buffers.empty();
 }
 
+// Where a .glb's JSON chunk ends (header, chunk length and type, text): its other chunks
+// follow. 0 when the file is too short to hold it.
+size_t glbJsonChunkEnd(const unsigned char* data, size_t size) {
+  uint32_t json_length = 0;
+  if (size < 20) return 0;
+  std::memcpy(&json_length, data + 12, 4);  // GLB is little-endian, like our hosts
+  return json_length > size - 20 ? 0 : 20 + size_t(json_length);
+}
+
 // Buffer 0's bytes in a .glb's binary chunk, when they may be set aside (the header
 // comment of prepareCompressedInput); null otherwise.
 const unsigned char* binaryToSetAside(const nlohmann::json& doc, const unsigned char* data,
                                       size_t size, size_t& bytes) {
-  uint32_t json_length = 0, chunk_length = 0, chunk_type = 0;
-  if (size < 20) return nullptr;
-  std::memcpy(&json_length, data + 12, 4);
-  const size_t chunk = 20 + size_t(json_length);  // the binary chunk's header
-  if (chunk + 8 > size) return nullptr;
+  uint32_t chunk_length = 0, chunk_type = 0;
+  const size_t chunk = glbJsonChunkEnd(data, size);  // the binary chunk's header
+  if (chunk == 0 || chunk + 8 > size) return nullptr;
   std::memcpy(&chunk_length, data + chunk, 4);
   std::memcpy(&chunk_type, data + chunk + 4, 4);
   // tinygltf's checks of the chunk (LoadBinaryFromMemory): left to it to refuse.
@@ -125,11 +132,9 @@ CompressedInput prepareCompressedInput(const nlohmann::json& doc, const unsigned
   // A .glb: header (magic, version, length), the JSON chunk (length, type, text padded
   // with spaces to 4 bytes), then the file's other chunks as they are (none when the binary
   // chunk is set aside: a .glb without one is valid).
-  uint32_t json_length = 0;
-  if (size >= 20) std::memcpy(&json_length, data + 12, 4);
-  if (size < 20 || json_length > size - 20) return {};
+  const size_t rest = glbJsonChunkEnd(data, size);
+  if (rest == 0) return {};
   json.resize((json.size() + 3) / 4 * 4, ' ');
-  const size_t rest = 20 + size_t(json_length);
   input.bytes.assign(data, data + 12);
   appendUint32(input.bytes, uint32_t(json.size()));
   input.bytes.insert(input.bytes.end(), data + 16, data + 20);  // the chunk type

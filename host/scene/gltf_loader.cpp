@@ -253,7 +253,8 @@ tinygltf::Model parseModel(const unsigned char* data, size_t size, const std::st
   checkDataUris(json, label);
   const nlohmann::json doc = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
   checkRequiredExtensions(requiredExtensions(doc), label);
-  // What tinygltf cannot parse of compressed files, set aside until it has parsed the rest.
+  // What tinygltf cannot parse of compressed files, and a large .glb's binary chunk, set
+  // aside until it has parsed the rest.
   const gltf::CompressedInput compressed = gltf::prepareCompressedInput(doc, data, size, binary);
   if (!compressed.bytes.empty()) {
     data = compressed.bytes.data();
