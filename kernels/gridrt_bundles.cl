@@ -148,8 +148,9 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
 
   /* Each work-item takes a consecutive share of the task's packets: PoCL runs a group's
    * work-items one after another, so every plane is read as one stream (interleaved packets,
-   * p += GR_PE_LOCAL_SIZE, made each work-item skip three lines of every four: kernel 8-9 %
-   * slower on the default Whitted frame's camera and shadow rays, docs/performance.md). */
+   * p += GR_PE_LOCAL_SIZE, made each work-item skip three lines of every four: the warm
+   * kernel 8-9 % slower on the default Whitted frame's camera and shadow rays,
+   * docs/performance.md). */
   const int per_item = (packets + GR_PE_LOCAL_SIZE - 1) / GR_PE_LOCAL_SIZE;
   const int p_end = min(packets, ((int)get_local_id(0) + 1) * per_item);
   for (int p = get_local_id(0) * per_item; p < p_end; ++p) {
