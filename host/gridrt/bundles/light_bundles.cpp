@@ -25,6 +25,13 @@ bool onFace(const glm::vec3& w, int& face, float& u, float& v) {
   return true;
 }
 
+// How far coordinate x lies from the light's coordinate `light` along the axis of cube face
+// `face`, outwards: a difference of floats taken in double, for a ray's origin and for a
+// box's nearest face alike, so that the two compare as the points do.
+double depthOnFace(float x, float light, int face) {
+  return face % 2 ? double(light) - double(x) : double(x) - double(light);
+}
+
 }  // namespace
 
 void FaceWindow::add(float u, float v) {
@@ -75,8 +82,8 @@ void FaceWindow::cellRange(float lo, float hi, float origin, float scale, int& c
 
 double originDepth(const GrRay& ray, const glm::vec3& light, int face) {
   const int a = face / 2;
-  const double o[3] = {ray.ox, ray.oy, ray.oz};
-  const double depth = face % 2 ? double(light[a]) - o[a] : o[a] - double(light[a]);
+  const float o[3] = {ray.ox, ray.oy, ray.oz};
+  const double depth = depthOnFace(o[a], light[a], face);
   return std::isnan(depth) ? INFINITY : depth;
 }
 
@@ -255,9 +262,8 @@ LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, 
         else
           bhi[a] = std::min(bhi[a], light[a]);
         if (!(blo[a] <= bhi[a])) continue;
-        // The box's nearest depth on this face (as originDepth: exact in double).
-        const double near =
-            s > 0.0f ? double(blo[a]) - double(light[a]) : double(light[a]) - double(bhi[a]);
+        // The box's nearest depth on this face (as originDepth's).
+        const double near = depthOnFace(s > 0.0f ? blo[a] : bhi[a], light[a], face);
         float umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
         for (int k = 0; k < 8; ++k) {
           const glm::vec3 p(k & 1 ? bhi.x : blo.x, k & 2 ? bhi.y : blo.y, k & 4 ? bhi.z : blo.z);
