@@ -32,6 +32,20 @@ double depthOnFace(float x, float light, int face) {
   return face % 2 ? double(light) - double(x) : double(x) - double(light);
 }
 
+// The squared distance of the float end o + tmax * d of `ray` from `light`
+// (glm::length's square).
+float endToLightSquared(const GrRay& ray, const glm::vec3& light) {
+  const glm::vec3 end =
+      glm::vec3(ray.ox, ray.oy, ray.oz) + ray.tmax * glm::vec3(ray.dx, ray.dy, ray.dz);
+  const glm::vec3 off = end - light;
+  return glm::dot(off, off);
+}
+
+// The bound kLightEndRoundingEpsilons puts on the rounding of an end within `reach`.
+float endRoundingOf(float reach) {
+  return kLightEndRoundingEpsilons * std::numeric_limits<float>::epsilon() * reach;
+}
+
 }  // namespace
 
 void FaceWindow::add(float u, float v) {
@@ -88,12 +102,9 @@ double originDepth(const GrRay& ray, const glm::vec3& light, int face) {
 }
 
 float missOfLight(const GrRay& ray, const glm::vec3& light) {
-  const glm::vec3 end =
-      glm::vec3(ray.ox, ray.oy, ray.oz) + ray.tmax * glm::vec3(ray.dx, ray.dy, ray.dz);
   const float reach =
       std::max({std::fabs(ray.ox), std::fabs(ray.oy), std::fabs(ray.oz)}) + ray.tmax;
-  return glm::length(end - light) +
-         kLightEndRoundingEpsilons * std::numeric_limits<float>::epsilon() * reach;
+  return std::sqrt(endToLightSquared(ray, light)) + endRoundingOf(reach);
 }
 
 LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, const GrRay* rays,
@@ -109,20 +120,24 @@ LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, 
   std::vector<float> slice_miss(slices, 0.0f), slice_reach(slices, 0.0f),
       slice_length(slices, INFINITY);
   parallelSlices(slices, [&](int me, int n) {
-    // Accumulated in locals and stored once: the slices' slots share cache lines.
+    // Accumulated in locals and stored once: the slices' slots share cache lines. The
+    // lengths are kept squared and their roots taken once at the end (sqrt is monotone,
+    // so the root of the largest square is the largest root): two roots a ray were the
+    // pass's longest stall.
     std::array<FaceWindow, 6> windows{};
-    float miss = 0.0f, reach = 0.0f, min_length = INFINITY;
+    float miss_squared = 0.0f, reach = 0.0f, min_length_squared = INFINITY;
     const auto [r0, r1] = sliceRange(count, me, n);
     for (size_t r = r0; r < r1; ++r) {
       const GrRay& ray = rays[r];
       const glm::vec3 d(ray.dx, ray.dy, ray.dz);
-      const float off = missOfLight(ray, light);
-      miss = std::max(miss, std::isfinite(off) ? off : INFINITY);
+      const float off = endToLightSquared(ray, light);
+      miss_squared = std::max(miss_squared, std::isfinite(off) ? off : INFINITY);
       const float ray_reach =
           std::fabs(ray.ox) + std::fabs(ray.oy) + std::fabs(ray.oz) + std::fabs(ray.tmax);
       reach = std::max(reach, std::isfinite(ray_reach) ? ray_reach : INFINITY);
-      const float length = glm::length(d);
-      min_length = std::min(min_length, length == length ? length : 0.0f);
+      const float length_squared = glm::dot(d, d);
+      min_length_squared =
+          std::min(min_length_squared, length_squared == length_squared ? length_squared : 0.0f);
       int face = 0;
       float u = 0.0f, v = 0.0f;
       if (!onFace(-d, face, u, v)) face = 0;  // no direction: any cell will do
@@ -133,9 +148,12 @@ LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, 
       windows[face].add(u, v);
     }
     thread_windows[me] = windows;
-    slice_miss[me] = miss;
+    // At least every ray's missOfLight: the root and the rounding term are each the
+    // largest of the slice's (the L1 reach bounds missOfLight's |o|_inf + tmax), and a
+    // rounded sum grows with its terms.
+    slice_miss[me] = std::sqrt(miss_squared) + endRoundingOf(reach);
     slice_reach[me] = reach;
-    slice_length[me] = min_length;
+    slice_length[me] = std::sqrt(min_length_squared);
   });
   LightRayBounds bounds;
   const float miss = bounds.miss = *std::max_element(slice_miss.begin(), slice_miss.end());

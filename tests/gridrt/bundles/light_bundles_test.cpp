@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <set>
@@ -113,6 +114,40 @@ TEST(LightBundles, MissOfLightBoundsTheExactEndsDistance) {
   }
   EXPECT_EQ(float_end_on_light, 10000);
   EXPECT_EQ(short_of_exact, 0);
+}
+
+// The batch's bounds, taken from squared lengths with one root at the end, must still
+// hold each ray's own: bounds.miss at least every ray's missOfLight (rays whose float end
+// is the light: only the rounding term keeps it above 0) and bounds.min_length exactly the
+// shortest |d|.
+TEST(LightBundles, BatchBoundsHoldEveryRaysOwn) {
+  const std::vector<GrTriangle> tris = {prepareTriangle(
+      std::array<glm::vec3, 3>{glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)}.data(),
+      0)};
+  Bounds box;
+  box.grow(glm::vec3(-2.0f));
+  box.grow(glm::vec3(2.0f));
+  const UniformGrid grid = buildUniformGrid(tris, box, GridSettings{});
+  const glm::vec3 light(0.0f);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), length(1.0f, 1000.0f);
+  std::vector<GrRay> rays;
+  float largest_miss = 0.0f, shortest = INFINITY;
+  for (int k = 0; k < 5000; ++k) {
+    const glm::vec3 d = length(rng) * glm::vec3(unit(rng), unit(rng), unit(rng));
+    const float tmax = 1.0f + std::fabs(unit(rng));
+    const glm::vec3 step = tmax * d;
+    rays.push_back(GrRay{-step.x, -step.y, -step.z, 0.0f, d.x, d.y, d.z, tmax});
+    largest_miss = std::max(largest_miss, missOfLight(rays.back(), light));
+    shortest = std::min(shortest, glm::length(d));
+  }
+  ASSERT_GT(largest_miss, 0.0f);
+  RayBundles bundles;
+  LightBundleScratch scratch;
+  const LightRayBounds bounds =
+      bundleLightRays(grid, light, rays.data(), rays.size(), bundles, scratch);
+  EXPECT_GE(bounds.miss, largest_miss);
+  EXPECT_EQ(bounds.min_length, shortest);
 }
 
 // Two layers of triangles under a light: shadow rays start on the upper layer's plane,
