@@ -100,11 +100,14 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
     auto& counts = bins.thread_counts[t];
     const auto [first, last] = sliceRange(ray_count, t, threads);
     for (size_t r = first; r < last; ++r) {
-      const GrRay& ray = rays[r];
+      // Copies: the pairs' stores could alias a reference's floats, so the compiler would
+      // load every field again after each store.
+      const GrRay ray = rays[r];
       const int octant = octantOf(ray);
-      for (int e = lists.begin[r]; e < lists.begin[r + 1]; ++e) {
-        const ListEntry& le = lists.entries[e];
-        writePair(out, counts[le.pe * kOctants + octant]++, ray, int(r), le);
+      const int end = lists.begin[r + 1];
+      for (int e = lists.begin[r]; e < end; ++e) {
+        const ListEntry entry = lists.entries[e];
+        writePair(out, counts[entry.pe * kOctants + octant]++, ray, int(r), entry);
       }
     }
   });
