@@ -45,42 +45,45 @@ struct Walk {
       node(-(code + 2), t_enter, t_exit);
   }
 
-  // The cells of grid node `n` from t0 to t1 (the interval of its cell above).
+  // The cells of grid node `n` from t0 to t1 (the interval of its cell above). The node
+  // and the walk's values are copied into locals: the entries' stores could alias the
+  // fields of references, which the compiler would then load again after every entry.
   void node(int n, float t0, float t1) {
-    const GridNode& g = grid.adaptive.nodes[n];
+    const GridNode g = grid.adaptive.nodes[n];
+    const int* const cells = grid.adaptive.cells.data() + g.cell_begin;
     const float* p[3];
     int i[3];
     float tn[3];
+    const float oo[3] = {o[0], o[1], o[2]}, ii[3] = {inv[0], inv[1], inv[2]};
+    const int ss[3] = {step[0], step[1], step[2]};
+    // The distance to the next plane along axis a.
+    auto nextOf = [&](int a) {
+      return ss[a] != 0 ? (p[a][ss[a] > 0 ? i[a] + 1 : i[a]] - oo[a]) * ii[a] : GR_INF;
+    };
     for (int a = 0; a < 3; ++a) {
       p[a] = grid.adaptive.planes.data() + g.plane_begin[a];
       // The entry cell: where the ray is at t0 among the inner planes, clamped.
-      const float x = step[a] != 0 ? o[a] + t0 * d[a] : o[a];
+      const float x = ss[a] != 0 ? oo[a] + t0 * d[a] : oo[a];
       i[a] = int(std::upper_bound(p[a] + 1, p[a] + g.dims[a], x) - (p[a] + 1));
-      tn[a] = next(a, p[a], i[a]);
+      tn[a] = nextOf(a);
     }
     const size_t before = out.size();
     float t_enter = t0, t_exit = t0;
     for (;;) {
       t_exit = std::min(std::min(tn[0], tn[1]), std::min(tn[2], t1));
       t_exit = std::max(t_exit, t_enter);
-      cell(grid.adaptive.cells[g.cell_begin + i[0] + g.dims[0] * (i[1] + g.dims[1] * i[2])],
-           t_enter, t_exit);
+      cell(cells[i[0] + g.dims[0] * (i[1] + g.dims[1] * i[2])], t_enter, t_exit);
       if (t_exit >= t1) break;
       // One axis at a time, x before y before z on ties (as the 3D-DDA).
       const int a = tn[0] <= tn[1] && tn[0] <= tn[2] ? 0 : tn[1] <= tn[2] ? 1 : 2;
-      i[a] += step[a];
+      i[a] += ss[a];
       if (i[a] < 0 || i[a] >= g.dims[a]) break;
-      tn[a] = next(a, p[a], i[a]);
+      tn[a] = nextOf(a);
       t_enter = t_exit;
     }
     // Left the node before t1 (its entry cell found a rounding off): the last cell covers
     // the rest of the interval, so no distance of the ray falls between two entries.
     if (t_exit < t1 && out.size() > before && out.back().t_exit == t_exit) out.back().t_exit = t1;
-  }
-
-  float next(int a, const float* p, int i) const {
-    if (step[a] == 0) return GR_INF;
-    return (p[step[a] > 0 ? i + 1 : i] - o[a]) * inv[a];
   }
 };
 
