@@ -44,8 +44,7 @@ __kernel void brute_intersect(__global const GrRay* rays, int ray_count,
   for (int i = 0; i < tri_count; ++i) {
     GrTriangle tri = tris[i];
     float16 t, u, v;
-    int16 hit = gr_intersect16(&r16, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z, tri.e2x,
-                               tri.e2y, tri.e2z, &t, &u, &v);
+    int16 hit = gr_intersect16(&r16, &tri, &t, &u, &v);
     hit &= (t > tmin) & (t < best_t);
     best_t = select(best_t, t, hit);
     best_u = select(best_u, u, hit);

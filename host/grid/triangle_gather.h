@@ -12,8 +12,8 @@ namespace gridrt {
 // How many positions ahead of the triangle being read the next one is fetched.
 constexpr size_t kTrianglePrefetchAhead = 16;
 
-// Starts fetching triangle `base[position]` (both cache lines where a 48-byte triangle
-// straddles two).
+// Starts fetching triangle `base[position]` (both cache lines where a triangle straddles
+// two: the arrays are not aligned to lines).
 inline void prefetchTriangle(const GrTriangle* base, int position) {
   const char* at = reinterpret_cast<const char*>(base + position);
   __builtin_prefetch(at);

@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "moller_trumbore.h"
+
 namespace gridrt {
 
 namespace {
@@ -28,7 +30,10 @@ GrTriangle prepareTriangle(const glm::vec3 v[3], int prim, const KernelOptions& 
     b -= a;
     c -= a;
   }
-  return GrTriangle{a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z, prim, vertices ? 1 : 0, 0};
+  GrTriangle tri{a.x, a.y,  a.z,  b.x,  b.y, b.z, c.x, c.y, c.z, prim, vertices ? 1 : 0,
+                 0,   0.0f, 0.0f, 0.0f, 0};
+  if (!vertices) gr_triangle_normal(b.x, b.y, b.z, c.x, c.y, c.z, &tri.nx, &tri.ny, &tri.nz);
+  return tri;
 }
 
 std::vector<GrTriangle> prepareTriangles(const Scene& scene, const KernelOptions& kernel) {

@@ -16,10 +16,11 @@ typedef struct {
   float dx, dy, dz, tmax;
 } GrRay; /* 32 bytes */
 
-/* A triangle prepared for the intersectors: first vertex and the two edges from it
- * (Moeller-Trumbore). In the watertight build the e fields hold the vertices v1 and v2
- * themselves: v0 + e1 in float does not always give back v1, and neighbours must share
- * their edge vertices bit for bit to be watertight. */
+/* A triangle prepared for the intersectors: first vertex, the two edges from it and
+ * their cross product n = e1 x e2 (gr_triangle_normal: Moeller-Trumbore). In the
+ * watertight build the e fields hold the vertices v1 and v2 themselves (v0 + e1 in float
+ * does not always give back v1, and neighbours must share their edge vertices bit for bit
+ * to be watertight) and n is zero, unused. */
 typedef struct {
   float v0x, v0y, v0z;
   float e1x, e1y, e1z;
@@ -27,7 +28,9 @@ typedef struct {
   int prim;          /* global triangle index in load order */
   int vertex_layout; /* 1: e1/e2 hold v1/v2 (watertight build), 0: edges */
   int pad1;
-} GrTriangle; /* 48 bytes */
+  float nx, ny, nz;
+  int pad2;
+} GrTriangle; /* 64 bytes */
 
 /* The closest hit found for one ray (or one ray inside one PE): prim < 0 means none. */
 typedef struct {
@@ -189,7 +192,7 @@ typedef struct {
 
 #ifndef __OPENCL_C_VERSION__
 static_assert(sizeof(GrRay) == 32, "GrRay layout");
-static_assert(sizeof(GrTriangle) == 48, "GrTriangle layout");
+static_assert(sizeof(GrTriangle) == 64, "GrTriangle layout");
 static_assert(sizeof(GrHit) == 16, "GrHit layout");
 static_assert(sizeof(GrGridInfo) == 48, "GrGridInfo layout");
 static_assert(sizeof(GrPeTask) == 16, "GrPeTask layout");

@@ -210,8 +210,7 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
         GrTriangle tri = tris[i];
         ++tested;
         float16 t, u, v;
-        int16 hit = gr_intersect16(r, tri.v0x, tri.v0y, tri.v0z, tri.e1x, tri.e1y, tri.e1z, tri.e2x,
-                                   tri.e2y, tri.e2z, &t, &u, &v);
+        int16 hit = gr_intersect16(r, &tri, &t, &u, &v);
         /* The in-voxel rule: without it a triangle spanning voxels could win in a PE that
          * comes before the voxel where its hit really lies. */
         hit &= active & (t > tmin) & (t < best_t) & (t >= t_enter) & (t <= t_exit);

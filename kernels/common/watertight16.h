@@ -89,9 +89,11 @@ inline int16 gr_intersect_watertight16_vertices(const GrRays16* r, float ax, flo
 }
 
 /* The signature of gr_intersect_mt16; the triangle layout as gr_intersect_watertight. */
-inline int16 gr_intersect_watertight16(const GrRays16* r, float v0x, float v0y, float v0z,
-                                       float e1x, float e1y, float e1z, float e2x, float e2y,
-                                       float e2z, float16* t_out, float16* u_out, float16* v_out) {
+inline int16 gr_intersect_watertight16(const GrRays16* r, const GrTriangle* tri, float16* t_out,
+                                       float16* u_out, float16* v_out) {
+  const float v0x = tri->v0x, v0y = tri->v0y, v0z = tri->v0z;
+  const float e1x = tri->e1x, e1y = tri->e1y, e1z = tri->e1z;
+  const float e2x = tri->e2x, e2y = tri->e2y, e2z = tri->e2z;
 #ifdef GR_TRIANGLE_VERTICES
   return gr_intersect_watertight16_vertices(r, v0x, v0y, v0z, e1x, e1y, e1z, e2x, e2y, e2z, t_out,
                                             u_out, v_out);
