@@ -77,9 +77,9 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
     counts.assign(parts, 0);
     const auto [first, last] = sliceRange(ray_count, t, threads);
     for (size_t r = first; r < last; ++r) {
-      const int octant = octantOf(rays[r]);
-      for (int e = lists.begin[r]; e < lists.begin[r + 1]; ++e)
-        ++counts[lists.entries[e].pe * kOctants + octant];
+      // The list's end read once: the counts' stores could alias it (as in the pass below).
+      const int octant = octantOf(rays[r]), end = lists.begin[r + 1];
+      for (int e = lists.begin[r]; e < end; ++e) ++counts[lists.entries[e].pe * kOctants + octant];
     }
   });
   // Exclusive prefix over (part, slice): slice t's pairs of a part follow slice t-1's;
