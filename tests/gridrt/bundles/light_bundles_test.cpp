@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cmath>
 #include <random>
 #include <set>
@@ -121,9 +120,8 @@ TEST(LightBundles, MissOfLightBoundsTheExactEndsDistance) {
 // is the light: only the rounding term keeps it above 0) and bounds.min_length exactly the
 // shortest |d|.
 TEST(LightBundles, BatchBoundsHoldEveryRaysOwn) {
-  const std::vector<GrTriangle> tris = {prepareTriangle(
-      std::array<glm::vec3, 3>{glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)}.data(),
-      0)};
+  const glm::vec3 corners[3] = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};
+  const std::vector<GrTriangle> tris = {prepareTriangle(corners, 0)};
   Bounds box;
   box.grow(glm::vec3(-2.0f));
   box.grow(glm::vec3(2.0f));
