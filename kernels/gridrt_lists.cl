@@ -46,11 +46,16 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
   r16.dy = gr_pair_plane16(packet, GR_PAIR_DY);
   r16.dz = gr_pair_plane16(packet, GR_PAIR_DZ);
   gr_prepare_rays16(&r16);
-  float16 tmin = gr_pair_plane16(packet, GR_PAIR_TMIN);
-  float16 tmax = gr_pair_plane16(packet, GR_PAIR_TMAX);
-  float16 t_enter = gr_pair_plane16(packet, GR_PAIR_T_ENTER);
-  float16 t_exit = gr_pair_plane16(packet, GR_PAIR_T_EXIT);
-  const int16 ray16 = as_int16(gr_pair_plane16(packet, GR_PAIR_RAY));
+  /* The pair's interval (gr_pair_bounds) as the phase-1 loop's four bounds: an open end
+   * is the ray's own (t > tmin, t < tmax), a closed one the voxel's (t >= t_enter,
+   * t <= t_exit); the other bound of each side lets everything through. */
+  const float16 lo = gr_pair_plane16(packet, GR_PAIR_T_LO);
+  const float16 hi = gr_pair_plane16(packet, GR_PAIR_T_HI);
+  const int16 ray_bits = as_int16(gr_pair_plane16(packet, GR_PAIR_RAY));
+  const int16 ray16 = ray_bits & GR_PAIR_RAY_INDEX;
+  const float16 tmin = select((float16)(-INFINITY), lo, (ray_bits & GR_PAIR_LO_OPEN) != 0);
+  const float16 tmax = select((float16)INFINITY, hi, (ray_bits & GR_PAIR_HI_OPEN) != 0);
+  const float16 t_enter = lo, t_exit = hi;
   int ray_of[GR_PACKET_LANES];
   vstore16(ray16, 0, ray_of);
   const int16 pierced = GR_LANE_INDEX16 < (int16)lanes;
@@ -74,8 +79,7 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
   m.tests = 0;
   if (any(active)) {
     /* The list path's rays have their own origins: segment culling. */
-    const GrSegmentPacket seg =
-        gr_segment_packet16(&r16, fmax(t_enter, tmin), fmin(t_exit, tmax), active);
+    const GrSegmentPacket seg = gr_segment_packet16(&r16, lo, hi, active);
     GrPeGeometry pe;
     pe.tris = pe_tris;
     pe.begin = pe_tri_begin[task.pe];

@@ -249,6 +249,11 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   const size_t n = rays.size();
   hits.resize(n);
   Stopwatch clock;
+  if (n > size_t(GR_PAIR_MAX_RAYS)) {  // more rays than a pair can name
+    ++counters_.split_batches;
+    intersectInParts(rays, mode, hits, diagnostics);
+    return;
+  }
   computeTraversalLists(grid_, rays.data(), n, lists_);
   if (n > 1 && !pairsFit(lists_.entries.size())) {
     counters_.lists_ms += clock.ms();

@@ -54,21 +54,49 @@ typedef struct {
 
 /* The list path's (ray, PE) pairs, binned per PE, GR_PACKET_LANES to a packet,
  * each carrying its ray, so a work-item loads its packet, one vload16 per plane, instead
- * of gathering rays: plane q of lane k at gr_pair_value(q, k) (structure of arrays). RAY
- * (the ray's index in the batch) holds int bits. Lanes past a part's last pair are zero. */
+ * of gathering rays: plane q of lane k at gr_pair_value(q, k) (structure of arrays).
+ * A pair's hits lie between T_LO and T_HI: the ray's interval (tmin, tmax) and the PE's
+ * [t_enter, t_exit] along it (the in-voxel rule) in one interval, each end either the
+ * ray's own (open) or the voxel's (closed), as bits of RAY (gr_pair_bounds). RAY holds int
+ * bits: the ray's index in the batch (below GR_PAIR_MAX_RAYS) and those two bits. Lanes
+ * past a part's last pair are zero. */
 #define GR_PAIR_OX 0
 #define GR_PAIR_OY 1
 #define GR_PAIR_OZ 2
 #define GR_PAIR_DX 3
 #define GR_PAIR_DY 4
 #define GR_PAIR_DZ 5
-#define GR_PAIR_TMIN 6
-#define GR_PAIR_TMAX 7
-#define GR_PAIR_T_ENTER 8 /* ray parameter where the ray enters the PE's voxel */
-#define GR_PAIR_T_EXIT 9  /* ... and where it leaves it */
-#define GR_PAIR_RAY 10
-#define GR_PAIR_PLANES 11
+#define GR_PAIR_T_LO 6 /* the smallest t a hit may have: max(tmin, t_enter) */
+#define GR_PAIR_T_HI 7 /* the largest: min(tmax, t_exit) */
+#define GR_PAIR_RAY 8
+#define GR_PAIR_PLANES 9
+#define GR_PAIR_MAX_RAYS (1 << 29)
+#define GR_PAIR_RAY_INDEX (GR_PAIR_MAX_RAYS - 1)
+#define GR_PAIR_LO_OPEN (1 << 29) /* T_LO is the ray's tmin: a hit lies strictly above it */
+#define GR_PAIR_HI_OPEN (1 << 30) /* T_HI is the ray's tmax: a hit lies strictly below it */
 #define gr_pair_value(q, k) ((q)*GR_PACKET_LANES + (k))
+
+/* The bounds of a pair's hits, t in (tmin, tmax) and in [t_enter, t_exit], as one interval
+ * from *lo to *hi whose open ends are GR_PAIR_LO_OPEN / GR_PAIR_HI_OPEN in the returned bits:
+ * the same test with two comparisons. Where a comparison of the ends is false both ways (a
+ * NaN), the end is NaN and nothing passes, as before. */
+GR_FN int gr_pair_bounds(float tmin, float tmax, float t_enter, float t_exit, float* lo,
+                         float* hi) {
+  int bits = 0;
+  if (tmin >= t_enter) {
+    *lo = tmin;
+    bits |= GR_PAIR_LO_OPEN;
+  } else {
+    *lo = t_enter > tmin ? t_enter : tmin + t_enter; /* the NaN of either */
+  }
+  if (tmax <= t_exit) {
+    *hi = tmax;
+    bits |= GR_PAIR_HI_OPEN;
+  } else {
+    *hi = t_exit < tmax ? t_exit : tmax + t_exit;
+  }
+  return bits;
+}
 
 /* One work-group's share of one PE: the pair_count pairs from packet first_packet on
  * (work-item w takes packet first_packet + w, and writes that packet's results). */

@@ -44,11 +44,11 @@ void writePair(float* out, int position, const GrRay& ray, int r, const ListEntr
   lane[gr_pair_value(GR_PAIR_DX, 0)] = ray.dx;
   lane[gr_pair_value(GR_PAIR_DY, 0)] = ray.dy;
   lane[gr_pair_value(GR_PAIR_DZ, 0)] = ray.dz;
-  lane[gr_pair_value(GR_PAIR_TMIN, 0)] = ray.tmin;
-  lane[gr_pair_value(GR_PAIR_TMAX, 0)] = ray.tmax;
-  lane[gr_pair_value(GR_PAIR_T_ENTER, 0)] = entry.t_enter;
-  lane[gr_pair_value(GR_PAIR_T_EXIT, 0)] = entry.t_exit;
-  lane[gr_pair_value(GR_PAIR_RAY, 0)] = intBits(r);
+  float lo, hi;
+  const int open = gr_pair_bounds(ray.tmin, ray.tmax, entry.t_enter, entry.t_exit, &lo, &hi);
+  lane[gr_pair_value(GR_PAIR_T_LO, 0)] = lo;
+  lane[gr_pair_value(GR_PAIR_T_HI, 0)] = hi;
+  lane[gr_pair_value(GR_PAIR_RAY, 0)] = intBits(r | open);
 }
 
 }  // namespace
@@ -63,6 +63,8 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
              PeBins& bins, float* out) {
   if (task_rays <= 0 || task_rays % GR_PACKET_LANES != 0)
     throw std::invalid_argument("binByPe: task_rays must be a positive multiple of 16");
+  if (lists.rayCount() > size_t(GR_PAIR_MAX_RAYS))
+    throw std::invalid_argument("binByPe: more rays than a pair can name (GR_PAIR_MAX_RAYS)");
   const int threads = parallelSliceCount();
   const size_t ray_count = lists.rayCount();
   const int parts = pe_count * kOctants;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <random>
 #include <set>
@@ -39,12 +40,13 @@ TEST(PeBinning, EveryPairOnceInATaskOfItsPeWithOneOctantInRayOrder) {
   auto plane = [&](int p, int q, int k) {
     return out[size_t(p) * kPairPacketFloats + size_t(gr_pair_value(q, k))];
   };
-  auto planeInt = [&](int p, int q, int k) {
+  auto planeBits = [&](int p, int q, int k) {
     float f = plane(p, q, k);
     int i;
     std::memcpy(&i, &f, sizeof i);
     return i;
   };
+  auto planeInt = [&](int p, int q, int k) { return planeBits(p, q, k) & GR_PAIR_RAY_INDEX; };
   std::vector<int> seen(lists.entries.size(), 0), pairs(pe_count, 0);
   std::vector<int> packet_used(bins.packets, 0);
   ASSERT_LE(bins.packets, maxPairPackets(lists.entries.size(), pe_count));
@@ -63,11 +65,16 @@ TEST(PeBinning, EveryPairOnceInATaskOfItsPeWithOneOctantInRayOrder) {
       int slot = lists.begin[ray];
       while (slot < lists.begin[ray + 1] && lists.entries[slot].pe != task.pe) ++slot;
       ASSERT_LT(slot, lists.begin[ray + 1]) << "pair in another PE's task";
-      EXPECT_EQ(plane(p, GR_PAIR_T_ENTER, lane), lists.entries[slot].t_enter);
-      EXPECT_EQ(plane(p, GR_PAIR_T_EXIT, lane), lists.entries[slot].t_exit);
       const GrRay& r = rays[ray];
-      const float expected[] = {r.ox, r.oy, r.oz, r.dx, r.dy, r.dz, r.tmin, r.tmax};
-      for (int q = GR_PAIR_OX; q <= GR_PAIR_TMAX; ++q)
+      const ListEntry& entry = lists.entries[slot];
+      // The interval of the entry within the ray's, each end open where it is the ray's.
+      const int bits = planeBits(p, GR_PAIR_RAY, lane);
+      EXPECT_EQ(plane(p, GR_PAIR_T_LO, lane), std::max(r.tmin, entry.t_enter));
+      EXPECT_EQ(plane(p, GR_PAIR_T_HI, lane), std::min(r.tmax, entry.t_exit));
+      EXPECT_EQ((bits & GR_PAIR_LO_OPEN) != 0, r.tmin >= entry.t_enter);
+      EXPECT_EQ((bits & GR_PAIR_HI_OPEN) != 0, r.tmax <= entry.t_exit);
+      const float expected[] = {r.ox, r.oy, r.oz, r.dx, r.dy, r.dz};
+      for (int q = GR_PAIR_OX; q <= GR_PAIR_DZ; ++q)
         EXPECT_EQ(plane(p, q, lane), expected[q]) << "the pair carries its ray";
       EXPECT_EQ(octant(rays[ray]), octant(rays[head_ray])) << "task mixes octants";
       if (k > 0) {
