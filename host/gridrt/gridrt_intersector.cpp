@@ -14,6 +14,11 @@ namespace gridrt {
 
 namespace {
 
+// How many slots of bundle order ahead the plane pass fetches its rays: the shadow rays'
+// planes of a default Whitted frame 1.60 -> 0.90 ms warm at 64 (16: 1.29; 128, 256: no
+// better than 64).
+constexpr size_t kPlaneFetchAhead = 64;
+
 // One parallel slice's counts of a batch's phase 2, summed once all slices are done.
 // A cache line each: the slices update theirs for every packet, and neighbours on one
 // line made the cores take it from each other (false sharing: the row of 16 bunnies'
@@ -530,6 +535,12 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   }
   if (!fill) {
     parallelFor(0LL, (long long)(stride), [&](long long b) {
+      // Bundle order jumps about the batch: each ray is fetched kPlaneFetchAhead slots
+      // before it is needed (the waits on these loads were most of the pass).
+      if (size_t(b) + kPlaneFetchAhead < slots) {
+        const int ahead = bundles.ray_of[b + kPlaneFetchAhead];
+        if (ahead >= 0) __builtin_prefetch(&rays[ahead]);
+      }
       const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
       const GrRay& ray = r >= 0 ? rays[r] : common;
       planes[GR_PLANE_DX * stride + b] = r >= 0 ? ray.dx : 0.0f;
