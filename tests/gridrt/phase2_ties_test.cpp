@@ -11,6 +11,7 @@
 #include "gridrt_intersector.h"
 #include "prepared_triangles.h"
 #include "test_support.h"
+#include "test_triangles.h"
 #include "uniform_grid.h"
 
 namespace gridrt {
@@ -18,10 +19,7 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-GrTriangle tri(glm::vec3 a, glm::vec3 b, glm::vec3 c, int prim) {
-  const glm::vec3 v[3] = {a, b, c};
-  return prepareTriangle(v, prim);
-}
+using test::tri;
 
 // The PEs whose triangle lists hold triangle `prim`.
 std::vector<int> pesHolding(const UniformGrid& grid, int prim) {

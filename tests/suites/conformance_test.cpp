@@ -20,6 +20,7 @@
 #include "prepared_triangles.h"
 #include "segment_culling.h"
 #include "test_support.h"
+#include "test_triangles.h"
 #include "uniform_grid.h"
 
 namespace gridrt {
@@ -469,10 +470,7 @@ TEST_F(Conformance, RandomRaysInTheClosedDefaultBoxMatchBrute) {
 
 // ---- Targeted cases -------------------------------------------------------------------
 
-GrTriangle tri(glm::vec3 a, glm::vec3 b, glm::vec3 c, int prim) {
-  const glm::vec3 v[3] = {a, b, c};
-  return prepareTriangle(v, prim);
-}
+using test::tri;
 
 Bounds boundsOf(const std::vector<GrTriangle>& tris) {
   Bounds b;

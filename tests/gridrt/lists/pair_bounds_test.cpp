@@ -12,12 +12,25 @@
 #include "gridrt_intersector.h"
 #include "prepared_triangles.h"
 #include "test_support.h"
+#include "test_triangles.h"
 #include "uniform_grid.h"
 
 namespace gridrt {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+
+using test::tri;
+
+// A grid of nx x ny x nz voxels over [-1, 1]^3.
+UniformGrid gridOverUnitCube(const std::vector<GrTriangle>& tris, int nx, int ny, int nz) {
+  Bounds b;
+  for (glm::vec3 p : {glm::vec3(-1, -1, -1), glm::vec3(1, 1, 1)}) b.grow(p);
+  GridSettings settings;
+  settings.automatic = false;
+  settings.dims = {nx, ny, nz};
+  return buildUniformGrid(tris, b, settings);
+}
 
 TEST(PairBounds, OneIntervalTestsLikeTheFourBounds) {
   float lo = 0.0f, hi = 0.0f;
@@ -49,19 +62,10 @@ TEST(PairBounds, HitsOnTheRaysEndsAreOutsideItAndJustInsideThemAreHits) {
   // A square at z = 0.3 in the upper voxel of a 1x1x2 grid over z in [-1, 1], and rays
   // straight up from inside the lower one: each ray's list holds both voxels, and the
   // square's hit lies well inside the upper one.
-  auto tri = [](glm::vec3 a, glm::vec3 b, glm::vec3 c, int prim) {
-    const glm::vec3 v[3] = {a, b, c};
-    return prepareTriangle(v, prim);
-  };
   const std::vector<GrTriangle> tris = {tri({-1, -1, 0.3f}, {1, -1, 0.3f}, {-1, 1, 0.3f}, 0),
                                         tri({1, 1, 0.3f}, {-1, 1, 0.3f}, {1, -1, 0.3f}, 1),
                                         tri({-1, -1, -1}, {-0.9f, -1, -1}, {-1, -0.9f, -1}, 2)};
-  Bounds b;
-  for (glm::vec3 p : {glm::vec3(-1, -1, -1), glm::vec3(1, 1, 1)}) b.grow(p);
-  GridSettings settings;
-  settings.automatic = false;
-  settings.dims = {1, 1, 2};
-  const UniformGrid grid = buildUniformGrid(tris, b, settings);
+  const UniformGrid grid = gridOverUnitCube(tris, 1, 1, 2);
 
   // For each start, four rays: tmax on the hit (no hit), tmax just past it (a hit), tmin
   // on it (no hit) and tmin just before it (a hit).
@@ -113,25 +117,16 @@ TEST(PairBounds, HitsOnTheRaysEndsAreOutsideItAndJustInsideThemAreHits) {
 TEST(PairBounds, AnyHitRaysEndingOnAFarHitStillFindTheNearOne) {
   if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
   ClRuntime runtime("");
-  auto tri = [](glm::vec3 a, glm::vec3 b, glm::vec3 c, int prim) {
-    const glm::vec3 v[3] = {a, b, c};
-    return prepareTriangle(v, prim);
-  };
   auto square = [&](float z, int prim) {
     return std::vector<GrTriangle>{tri({-1, -1, z}, {1, -1, z}, {-1, 1, z}, prim),
                                    tri({1, 1, z}, {-1, 1, z}, {1, -1, z}, prim + 1)};
   };
-  Bounds b;
-  for (glm::vec3 p : {glm::vec3(-1, -1, -1), glm::vec3(1, 1, 1)}) b.grow(p);
-  GridSettings settings;
-  settings.automatic = false;
-  settings.dims = {1, 1, 1};
   // Both squares in one PE, the far one (z = 0.6) tested first in one scene, last in the
   // other; rays up from z = -0.5 end exactly on the far one.
   for (bool far_first : {true, false}) {
     std::vector<GrTriangle> tris = far_first ? square(0.6f, 0) : square(0.2f, 0);
     for (const GrTriangle& t : far_first ? square(0.2f, 2) : square(0.6f, 2)) tris.push_back(t);
-    const UniformGrid grid = buildUniformGrid(tris, b, settings);
+    const UniformGrid grid = gridOverUnitCube(tris, 1, 1, 1);
     std::vector<GrRay> rays;
     for (int j = 0; j < 8; ++j)
       for (int i = 0; i < 8; ++i) {
