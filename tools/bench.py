@@ -30,7 +30,8 @@ from bench_farm import bench_farm, chart_farm
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODELS = os.path.join(ROOT, "scenes", "models")
-GRIDRT = os.path.join(ROOT, "build", "gridrt")
+# GRIDRT_BINARY: another build's gridrt (a machine with another OpenCL device, say).
+GRIDRT = os.environ.get("GRIDRT_BINARY") or os.path.join(ROOT, "build", "gridrt")
 # Embree 3 on the same rays, built where Embree is installed (tools/embree_peer.cpp).
 EMBREE_PEER = os.path.join(ROOT, "build", "tools", "embree_peer")
 
@@ -45,7 +46,8 @@ PAPER_POINTS = [("FPGA, 8 PEs (paper)", 8, 82000.0), ("GTX 465 CUDA, 27 blocks (
 def run(args, frames):
     with tempfile.TemporaryDirectory() as tmp:
         stats = os.path.join(tmp, "stats.json")
-        cmd = [GRIDRT, *args, "--repeat", str(frames), "-q", "-o", os.path.join(tmp, "out.exr"),
+        # A PNG: written after the timed frames, and without the image module (OpenImageIO).
+        cmd = [GRIDRT, *args, "--repeat", str(frames), "-q", "-o", os.path.join(tmp, "out.png"),
                "--stats-json", stats]
         subprocess.run(cmd, check=True)
         with open(stats) as f:
@@ -618,7 +620,20 @@ def machine_line():
             cpu = next(l.split(":", 1)[1].strip() for l in f if l.startswith("model name"))
     except (OSError, StopIteration):
         pass
-    return f"{cpu}, {os.cpu_count()} cores, PoCL CPU device; medians of frames after a warm-up"
+    return f"{cpu}, {os.cpu_count()} cores, {opencl_device()}; medians of frames after a warm-up"
+
+
+def opencl_device():
+    """The OpenCL device gridrt renders on by default (the first of --list-devices)."""
+    try:
+        table = subprocess.run([GRIDRT, "--list-devices"], capture_output=True, text=True,
+                               check=True).stdout.splitlines()
+        # "0:0   CPU    pthread-skylake-avx512-AMD EPYC   2 ...": type and name
+        fields = table[1].split()
+        return f"OpenCL {fields[1]} device {' '.join(fields[2:-4])}"
+    except (OSError, subprocess.CalledProcessError, IndexError):
+        return "OpenCL device unknown"
+
 
 # The adaptive set: the uneven family (tools/make_uneven_scenes, made from the full bunny
 # into build/uneven_scenes when the set runs) and the even scenes, primary rays, with the

@@ -192,13 +192,17 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
         mask &= ~(uint)gr_lane_bits16(miss);
       }
       if (seg_cull) mask &= ~(uint)gr_segment_culled16(seg, seg_planes, seg_stride, chunk);
-      /* A triangle may straddle two cache lines: both ends are fetched. */
+#ifdef GR_CPU_DEVICE
+      /* A triangle may straddle two cache lines: both ends are fetched. Only on a CPU
+       * device (the host defines GR_CPU_DEVICE): GPU compilers (NVIDIA's) refuse
+       * __builtin_prefetch of a __global pointer. */
       for (uint ahead = mask; ahead; ahead &= ahead - 1u) {
         __global const char* at =
             (__global const char*)(tris + chunk + 31 - clz(ahead & (0u - ahead)));
         __builtin_prefetch(at);
         __builtin_prefetch(at + sizeof(GrTriangle) - 1);
       }
+#endif
       todo[c] = mask;
     }
     for (int c = 0; c < chunks; ++c) {

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# tools/gpu_check.sh BUILD OUT: gridrt on another OpenCL device (a GPU), on a machine that
+# has gridrt's binaries but no OpenImageIO, no Embree and no PoCL. On the first OpenCL
+# device it runs the test suites that drive the device (conformance, stability,
+# watertight, uneven scenes, the pair bounds, phase 2's ties, the renderer's passes), the
+# Whitted frames (tools/bench.py whitted) and the paper's experiment (tools/bench.py
+# paper), and writes into OUT:
+#   log.txt            everything, in the order it ran, with UTC times
+#   whitted.csv/.png   tools/bench.py whitted (the Embree rows left out: no Embree there)
+#   paper.csv/.png     tools/bench.py paper
+#   images.tgz         the default scene's Whitted frame (640x480, depth 5) by gridrt on the
+#                      device and by the exact host reference, as PNG, to compare elsewhere
+# BUILD is a build folder (or a copy of its gridrt and tests/*_test); the tests find the
+# source tree and BUILD at the paths they were built with (docs/performance.md, "On other
+# devices"). PYTHON: the interpreter for bench.py, with matplotlib (default python3).
+set -u
+[ $# -eq 2 ] || { echo "usage: tools/gpu_check.sh BUILD OUT" >&2; exit 2; }
+build=$(realpath "$1")
+out=$(realpath "$2")
+root=$(cd "$(dirname "$0")/.." && pwd)
+export GRIDRT_CACHE_DIR=${GRIDRT_CACHE_DIR:-$(mktemp -d)}
+export PYTHONUNBUFFERED=1
+log=$out/log.txt
+step() { echo "== $(date -u +%H:%M:%S) $*" >>"$log"; }
+
+step "machine"
+{
+  grep -m1 "model name" /proc/cpuinfo
+  nproc
+  command -v nvidia-smi >/dev/null && nvidia-smi --query-gpu=name,driver_version,memory.total \
+    --format=csv,noheader
+  "$build/gridrt" --list-devices
+} >>"$log" 2>&1 || { step "no OpenCL device: stopped"; exit 1; }
+
+# The suites one at a time, the conformance suite first; all of them within
+# GPU_CHECK_TEST_SECONDS (default 240), so the benchmarks still run after a suite that hangs.
+deadline=$((SECONDS + ${GPU_CHECK_TEST_SECONDS:-240}))
+for suite in conformance stability watertight uneven_scenes pair_bounds phase2_ties \
+  interrupt_batches segment_culling light_culling whitted_shading render_passes cl_runtime; do
+  left=$((deadline - SECONDS))
+  [ $left -gt 0 ] || { step "test $suite: no time left"; continue; }
+  step "test $suite"
+  timeout $left "$build/tests/${suite}_test" --gtest_brief=1 >>"$log" 2>&1
+  step "test $suite: exit $?"
+done
+
+step "images"
+images=$(mktemp -d)
+whitted=(--width 640 --height 480 --max-depth 5 -q)
+timeout 120 "$build/gridrt" "${whitted[@]}" --stats-json "$images/gridrt.json" -o "$images/gridrt.png" >>"$log" 2>&1
+timeout 120 "$build/gridrt" "${whitted[@]}" --accel reference -o "$images/reference.png" >>"$log" 2>&1
+tar czf "$out/images.tgz" -C "$images" .
+step "images: done"
+
+for set in whitted paper; do
+  step "bench $set"
+  GRIDRT_BINARY="$build/gridrt" timeout 400 "${PYTHON:-python3}" "$root/tools/bench.py" "$set" --frames 7 \
+    --out "$out" >>"$log" 2>&1
+  step "bench $set: exit $?"
+done
