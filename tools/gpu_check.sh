@@ -10,11 +10,16 @@
 #   paper.csv/.png     tools/bench.py paper
 #   images.tgz         the default scene's Whitted frame (640x480, depth 5) by gridrt on the
 #                      device and by the exact host reference, as PNG, to compare elsewhere
-# BUILD is a build folder (or a copy of its gridrt and tests/*_test); the tests find the
+# BUILD is a build folder, or what tools/pack_build.sh packed of one; the tests find the
 # source tree and BUILD at the paths they were built with (docs/performance.md, "On other
 # devices"). PYTHON: the interpreter for bench.py, with matplotlib (default python3).
 set -u
-[ $# -eq 2 ] || { echo "usage: tools/gpu_check.sh BUILD OUT" >&2; exit 2; }
+# The suites that drive the device, the conformance suite first (tools/pack_build.sh packs
+# the same: tools/gpu_check.sh --suites prints them).
+suites="conformance stability watertight uneven_scenes pair_bounds phase2_ties
+  interrupt_batches segment_culling light_culling whitted_shading render_passes cl_runtime"
+[ "${1:-}" = --suites ] && { echo $suites; exit 0; }
+[ $# -eq 2 ] || { echo "usage: tools/gpu_check.sh BUILD OUT | --suites" >&2; exit 2; }
 build=$(realpath "$1")
 out=$(realpath "$2")
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -32,11 +37,10 @@ step "machine"
   "$build/gridrt" --list-devices
 } >>"$log" 2>&1 || { step "no OpenCL device: stopped"; exit 1; }
 
-# The suites one at a time, the conformance suite first; all of them within
-# GPU_CHECK_TEST_SECONDS (default 240), so the benchmarks still run after a suite that hangs.
+# The suites one at a time, all of them within GPU_CHECK_TEST_SECONDS (default 240), so
+# the benchmarks still run after a suite that hangs.
 deadline=$((SECONDS + ${GPU_CHECK_TEST_SECONDS:-240}))
-for suite in conformance stability watertight uneven_scenes pair_bounds phase2_ties \
-  interrupt_batches segment_culling light_culling whitted_shading render_passes cl_runtime; do
+for suite in $suites; do
   left=$((deadline - SECONDS))
   [ $left -gt 0 ] || { step "test $suite: no time left"; continue; }
   step "test $suite"
