@@ -52,16 +52,28 @@ def run(args, frames):
         subprocess.run(cmd, check=True)
         with open(stats) as f:
             s = json.load(f)
-    # The tracing time by ray kind, flattened (trace_primary_ms, ...) so medians() takes it.
+    # The tracing time by ray kind, flattened (trace_primary_ms, ...) so medians() takes it,
+    # and gridrt's list time by host pass (walk_ms, binning_ms, bundling_ms).
     for key, value in s.get("trace", {}).items():
         s["trace_" + key] = value
+    for key in LIST_PASSES:
+        s[key] = s.get("lists", {}).get(key, 0.0)
     return s
+
+
+# gridrt's list time (lists_ms) by host pass: the lists' walk, the pairs' binning, bundling.
+LIST_PASSES = ("walk_ms", "binning_ms", "bundling_ms")
+
+
+# The chart's names of the host's list passes.
+PHASE_NAMES = {"walk_ms": "list walk", "binning_ms": "binning", "bundling_ms": "bundling"}
 
 
 def row(label, s, **extra):
     r = {"label": label, "accel": s["accel"], "triangles": s["triangles"],
          "width": s["width"], "height": s["height"], "rays": s["rays"]["total"],
-         "frame_ms": s["frame_ms"], "lists_ms": s["lists_ms"], "kernel_ms": s["kernel_ms"],
+         "frame_ms": s["frame_ms"], "lists_ms": s["lists_ms"],
+         **{key: s.get(key, 0.0) for key in LIST_PASSES}, "kernel_ms": s["kernel_ms"],
          "reduce_ms": s["reduce_ms"], "shade_ms": s["shade_ms"],
          "mrays_per_s": s["mrays_per_s"], "tests_per_ray": s["tests_per_ray"],
          "tests_run_per_ray": s["tests_run_per_ray"],
@@ -214,7 +226,7 @@ RAY_KINDS = ("primary", "secondary", "shadow")
 TRACE_KEYS = tuple(f"trace_{kind}_{unit}" for kind in RAY_KINDS for unit in ("ms", "ns_per_ray"))
 # The statistics run_median() takes the median of.
 MEDIAN_KEYS = ("frame_ms", "fps", "lists_ms", "kernel_ms", "reduce_ms", "shade_ms", "build_ms",
-               "mrays_per_s") + TRACE_KEYS
+               "mrays_per_s") + LIST_PASSES + TRACE_KEYS
 
 
 def run_peer_whitted(args, frames, packet):
@@ -313,11 +325,11 @@ def chart_whitted(rows, path):
     rows = [r for r in rows if not r.get("peer_comparison")]
     fig, axes = plt.subplots(1, 3 if peers else 2, figsize=(18 if peers else 12, 4.5))
     ax, kinds = axes[0], axes[1]
-    phases = ["lists_ms", "kernel_ms", "reduce_ms", "shade_ms"]
+    phases = [*LIST_PASSES, "kernel_ms", "reduce_ms", "shade_ms"]
     bottom = [0.0] * len(rows)
     for p in phases:
         vals = [r[p] for r in rows]
-        ax.bar([r["label"] for r in rows], vals, bottom=bottom, label=p.replace("_ms", ""))
+        ax.bar([r["label"] for r in rows], vals, bottom=bottom, label=PHASE_NAMES.get(p, p.replace("_ms", "")))
         bottom = [b + v for b, v in zip(bottom, vals)]
     ax.scatter([r["label"] for r in rows], [r["frame_ms"] for r in rows], color="k", zorder=5,
                label="frame")

@@ -310,7 +310,7 @@ RenderSettings renderSettings(const Options& o) {
 // Per-frame timings of the timed frames, and the intersector counters of the first.
 struct FrameTimings {
   FramePhaseTimes phases;
-  std::vector<double> kernel_ms, lists_ms, reduce_ms;
+  std::vector<double> kernel_ms, lists_ms, walk_ms, binning_ms, bundling_ms, reduce_ms;
   IntersectCounters first_frame_counters;
 };
 
@@ -333,7 +333,10 @@ FrameTimings renderFrames(const Options& o, Renderer& renderer, Intersector& int
     }
     t.phases.add(frame.times);
     t.kernel_ms.push_back(after.kernel_ms - before.kernel_ms);
-    t.lists_ms.push_back(after.lists_ms - before.lists_ms);
+    t.lists_ms.push_back(after.listsMs() - before.listsMs());
+    t.walk_ms.push_back(after.walk_ms - before.walk_ms);
+    t.binning_ms.push_back(after.binning_ms - before.binning_ms);
+    t.bundling_ms.push_back(after.bundling_ms - before.bundling_ms);
     t.reduce_ms.push_back(after.reduce_ms - before.reduce_ms);
   }
   return t;
@@ -470,7 +473,10 @@ FrameResult renderScene(const Options& o, ClRuntime& runtime, const Scene& scene
         {"length_mean", c.rays ? double(c.list_entries) / double(c.rays) : 0.0},
         {"length_max", gridrt->maxListLengthKnown() ? nlohmann::json(gridrt->maxListLength())
                                                     : nlohmann::json(nullptr)},
-        {"list_ms", median(t.lists_ms)}};
+        {"list_ms", median(t.lists_ms)},
+        {"walk_ms", median(t.walk_ms)},
+        {"binning_ms", median(t.binning_ms)},
+        {"bundling_ms", median(t.bundling_ms)}};
     stats["pe_load"] = {{"rays_mean", rays_pe.mean / frames},
                         {"rays_max", rays_pe.max / frames},
                         {"tests_mean", tests_pe.mean / frames},

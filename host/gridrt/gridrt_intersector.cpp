@@ -260,12 +260,13 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
     return;
   }
   computeTraversalLists(grid_, rays.data(), n, lists_);
+  counters_.walk_ms += clock.ms();
   if (n > 1 && !pairsFit(lists_.entries.size())) {
-    counters_.lists_ms += clock.ms();
     ++counters_.split_batches;
     intersectInParts(rays, mode, hits, diagnostics);
     return;
   }
+  clock.restart();
   // The pairs go straight into the device buffer, left mapped by the previous batch.
   const size_t pair_floats =
       maxPairPackets(lists_.entries.size(), grid_.peCount()) * kPairPacketFloats;
@@ -279,7 +280,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
     });
   }
   binByPe(lists_, rays.data(), grid_.peCount(), kPeTaskRays, bins_, entries_map_);
-  counters_.lists_ms += clock.ms();
+  counters_.binning_ms += clock.ms();
 
   clock.restart();
   runPes(n, mode);
@@ -349,7 +350,7 @@ void GridRtIntersector::intersectPrimary(const PinholeView& view, const std::vec
                                          std::vector<GrHit>& hits, RayDiagnostics* diagnostics) {
   Stopwatch clock;
   bundleCameraRays(grid_, view, camera_bundles_, cameraInterrupt(), camera_scratch_);
-  counters_.lists_ms += clock.ms();
+  counters_.bundling_ms += clock.ms();
   const GrCullFrame frame = cullFrameOf(view);
   intersectBundles(rays, camera_bundles_, HitMode::Closest, cameraInterrupt(), hits, diagnostics,
                    &frame);
@@ -367,7 +368,7 @@ void GridRtIntersector::intersectTowardsPoint(const glm::vec3& point,
       bundleLightRays(grid_, point, rays.data(), rays.size(), light_bundles_, light_scratch_);
   if (!force_light_bundles_ &&
       light_bundles_.out_lanes > kMaxLightBundleLanesPerRay * rays.size()) {
-    counters_.lists_ms += clock.ms();
+    counters_.bundling_ms += clock.ms();
     intersect(rays, mode, hits, nullptr);
     return;
   }
@@ -382,7 +383,7 @@ void GridRtIntersector::intersectTowardsPoint(const glm::vec3& point,
     light_cull_planes_.uploadNow(rt_, light_cull_cache_.planes());
     light_cull_frames_.upload(rt_, light_cull_cache_.frames().data(), 6);
   }
-  counters_.lists_ms += clock.ms();
+  counters_.bundling_ms += clock.ms();
   intersectBundles(rays, light_bundles_, mode, allInterrupt(), hits, nullptr, nullptr, nullptr,
                    light_culling);
 }
@@ -409,7 +410,7 @@ void GridRtIntersector::generateAndIntersectPrimary(const PinholeView& view,
   }
   Stopwatch clock;
   bundleCameraRays(grid_, view, camera_bundles_, cameraInterrupt(), camera_scratch_);
-  counters_.lists_ms += clock.ms();
+  counters_.bundling_ms += clock.ms();
   const GrCullFrame frame = cullFrameOf(view);
   const PixelWindow& w = view.window;
   const int ww = w.width(), wh = w.height();

@@ -32,10 +32,15 @@ struct IntersectCounters {
   uint64_t tests_run = 0;      // ray-triangle tests run (gridrt: those left after culling)
   uint64_t list_entries = 0;   // (ray, PE) pairs (gridrt)
   uint64_t skipped_pairs = 0;  // pairs skipped by the emulated interrupt
-  double lists_ms = 0;         // traversal lists and binning on the host
+  // The host's work before the kernels (gridrt), in three parts:
+  double walk_ms = 0;          // the traversal lists' walk of the grid
+  double binning_ms = 0;       // the (ray, PE) pairs binned by PE into the device's buffer
+  double bundling_ms = 0;      // camera and light bundles, with the light's culling sets
   double kernel_ms = 0;        // upload + kernel + download
   double reduce_ms = 0;        // phase-2 reduction on the host
   uint64_t split_batches = 0;  // batches too large for the device, run in parts (gridrt)
+
+  double listsMs() const { return walk_ms + binning_ms + bundling_ms; }
 };
 
 // Per-ray diagnostics for AOVs, filled when requested.

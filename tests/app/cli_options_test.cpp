@@ -123,6 +123,21 @@ TEST_F(CliOptions, PeInterruptSkipsPairsInEveryBatchWithTheSameImage) {
   EXPECT_EQ(differingPixels(plain_.image, all.image), 0u);
 }
 
+// The host's list time split by pass: a Whitted frame walks the lists of its reflection and
+// refraction rays and bins their pairs, and bundles its camera rays; camera rays alone are
+// only bundled.
+TEST_F(CliOptions, StatisticsSplitTheHostListTimeByPass) {
+  const nlohmann::json& lists = plain_.stats["lists"];
+  ASSERT_GT(secondaryRays(plain_.stats), 0u);
+  EXPECT_GT(lists["walk_ms"].get<double>(), 0.0);
+  EXPECT_GT(lists["binning_ms"].get<double>(), 0.0);
+  EXPECT_GT(lists["bundling_ms"].get<double>(), 0.0);
+  const Render primary = render("lists_primary", {"--primary-only"});
+  EXPECT_EQ(primary.stats["lists"]["walk_ms"].get<double>(), 0.0);
+  EXPECT_EQ(primary.stats["lists"]["binning_ms"].get<double>(), 0.0);
+  EXPECT_GT(primary.stats["lists"]["bundling_ms"].get<double>(), 0.0);
+}
+
 // --threads N limits the host's loops and PoCL's threads together; the image does not
 // depend on the count (every parallel loop splits its range by count, never by timing).
 TEST_F(CliOptions, ThreadsSetsTheHostAndDeviceThreadCountsNotTheImage) {
