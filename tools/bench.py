@@ -43,6 +43,12 @@ PAPER_GRIDS = [(1, "1,1,1"), (2, "2,1,1"), (4, "2,2,1"), (8, "2,2,2"), (12, "3,2
 PAPER_POINTS = [("FPGA, 8 PEs (paper)", 8, 82000.0), ("GTX 465 CUDA, 27 blocks (paper)", 27, 1320.0)]
 
 
+# gridrt's list time (lists_ms) by host pass: the lists' walk, the pairs' binning, bundling;
+# and their names in the charts.
+LIST_PASSES = ("walk_ms", "binning_ms", "bundling_ms")
+PHASE_NAMES = {"walk_ms": "list walk", "binning_ms": "binning", "bundling_ms": "bundling"}
+
+
 def run(args, frames):
     with tempfile.TemporaryDirectory() as tmp:
         stats = os.path.join(tmp, "stats.json")
@@ -59,14 +65,6 @@ def run(args, frames):
     for key in LIST_PASSES:
         s[key] = s.get("lists", {}).get(key, 0.0)
     return s
-
-
-# gridrt's list time (lists_ms) by host pass: the lists' walk, the pairs' binning, bundling.
-LIST_PASSES = ("walk_ms", "binning_ms", "bundling_ms")
-
-
-# The chart's names of the host's list passes.
-PHASE_NAMES = {"walk_ms": "list walk", "binning_ms": "binning", "bundling_ms": "bundling"}
 
 
 def row(label, s, **extra):
@@ -329,7 +327,8 @@ def chart_whitted(rows, path):
     bottom = [0.0] * len(rows)
     for p in phases:
         vals = [r[p] for r in rows]
-        ax.bar([r["label"] for r in rows], vals, bottom=bottom, label=PHASE_NAMES.get(p, p.replace("_ms", "")))
+        ax.bar([r["label"] for r in rows], vals, bottom=bottom,
+               label=PHASE_NAMES.get(p, p.replace("_ms", "")))
         bottom = [b + v for b, v in zip(bottom, vals)]
     ax.scatter([r["label"] for r in rows], [r["frame_ms"] for r in rows], color="k", zorder=5,
                label="frame")
