@@ -310,7 +310,7 @@ RenderSettings renderSettings(const Options& o) {
 // Per-frame timings of the timed frames, and the intersector counters of the first.
 struct FrameTimings {
   FramePhaseTimes phases;
-  std::vector<double> kernel_ms, lists_ms, walk_ms, binning_ms, bundling_ms, reduce_ms;
+  std::vector<double> kernel_ms, device_ms, lists_ms, walk_ms, binning_ms, bundling_ms, reduce_ms;
   IntersectCounters first_frame_counters;
 };
 
@@ -333,6 +333,7 @@ FrameTimings renderFrames(const Options& o, Renderer& renderer, Intersector& int
     }
     t.phases.add(frame.times);
     t.kernel_ms.push_back(after.kernel_ms - before.kernel_ms);
+    t.device_ms.push_back(after.device_ms - before.device_ms);
     t.lists_ms.push_back(after.listsMs() - before.listsMs());
     t.walk_ms.push_back(after.walk_ms - before.walk_ms);
     t.binning_ms.push_back(after.binning_ms - before.binning_ms);
@@ -347,7 +348,7 @@ std::unique_ptr<Intersector> makeIntersector(const Options& o, ClRuntime& runtim
                                              const std::vector<GrTriangle>& triangles,
                                              const UniformGrid& grid, GridRtIntersector*& gridrt) {
   gridrt = nullptr;
-  const KernelOptions kernel{o.watertight};
+  const KernelOptions kernel{o.watertight, o.pe_layout};
   if (o.accel == AccelKind::Brute)
     return std::make_unique<BruteIntersector>(runtime, triangles, kernel);
   if (o.accel == AccelKind::Reference) return std::make_unique<ReferenceIntersector>(scene);
@@ -446,6 +447,7 @@ FrameResult renderScene(const Options& o, ClRuntime& runtime, const Scene& scene
   stats["build_ms"] = build_ms;
   stats["lists_ms"] = median(t.lists_ms);
   stats["kernel_ms"] = median(t.kernel_ms);
+  stats["kernel_device_ms"] = median(t.device_ms);
   stats["reduce_ms"] = median(t.reduce_ms);
   stats["generate_ms"] = frame.times.generate_ms;  // primary rays of the last frame
   const IntersectCounters& c = t.first_frame_counters;
@@ -481,6 +483,7 @@ FrameResult renderScene(const Options& o, ClRuntime& runtime, const Scene& scene
                         {"rays_max", rays_pe.max / frames},
                         {"tests_mean", tests_pe.mean / frames},
                         {"tests_max", tests_pe.max / frames}};
+    stats["pe_layout"] = gridrt->peLayout() == PeLayout::Lanes ? "lanes" : "packets";
     stats["interrupt"] = {{"camera_rays", gridrt->cameraInterrupt()},
                           {"all_rays", gridrt->allInterrupt()},
                           {"skipped_pairs", c.skipped_pairs}};
@@ -604,6 +607,7 @@ int runApplication(const Options& given) {
   }
   stats["device"] = runtime.info().name;
   stats["device_compute_units"] = runtime.info().compute_units;
+  stats["device_type"] = runtime.info().type;
   stats["host_threads"] = parallelSliceCount();
   stats["scene"] = o.scene.empty()             ? "(default scene)"
                    : o.scene == kStandardInput ? "(standard input)"

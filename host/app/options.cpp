@@ -129,7 +129,7 @@ void parseRayOffset(const std::string& text, RayOffset& offset) {
 struct RawOptions {
   std::string accel = "gridrt", grid = "auto", background, ray_offset = "robust", look_at;
   std::string crop, crop_output = "full", intersector = "mt", aa = "uniform", frames;
-  std::string shading = "phong", format;
+  std::string shading = "phong", format, pe_layout = "auto";
   std::vector<std::string> aovs;
   std::set<std::string> given;  // the options on the command line, e.g. "--spp"
 };
@@ -158,6 +158,8 @@ void checkCombinations(Options& o, const RawOptions& raw) {
   if (given("--fps") && !o.frames) throw UsageError("--fps: only with --frames");
   if (given("--animation") && !o.time && !o.frames)
     throw UsageError("--animation: only with --time or --frames");
+  if (given("--pe-layout") && o.accel != AccelKind::GridRt)
+    throw UsageError("--pe-layout: only with --accel gridrt (its PE kernels)");
   const bool has_pes = o.accel == AccelKind::GridRt || o.accel == AccelKind::Dda;
   std::vector<std::string> names = o.aov_layers;
   for (const auto& aov : o.aovs) names.push_back(aov.first);
@@ -297,6 +299,11 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.add_flag("--pe-interrupt", o.pe_interrupt,
                "gridrt: in every batch a PE skips rays an earlier PE has hit (the paper's "
                "interrupt; camera rays always use it)");
+  app.add_option("--pe-layout", raw.pe_layout,
+                 "gridrt's PE kernels: packets (16 rays in each work-item's SIMD lanes), lanes "
+                 "(a ray a work-item) or auto (packets on a CPU device, lanes on others)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "packets", "lanes"}));
   app.add_flag("--primary-only", o.primary_only,
                "primary rays only, headlight shading (the paper's measurement)");
   app.add_option("--aov", raw.aovs,
@@ -428,6 +435,9 @@ void finish(Options& o, const RawOptions& raw) {
   parseGrid(raw.grid, o.grid);
   parseRayOffset(raw.ray_offset, o.ray_offset);
   o.watertight = raw.intersector == "watertight";
+  o.pe_layout = raw.pe_layout == "packets" ? PeLayout::Packets
+                : raw.pe_layout == "lanes" ? PeLayout::Lanes
+                                           : PeLayout::Auto;
   o.shading = raw.shading == "gltf" ? ShadingModel::Gltf : ShadingModel::Phong;
   o.adaptive_aa = raw.aa == "adaptive";
   if (!raw.background.empty()) o.background = parseVec3("--background", raw.background);

@@ -97,12 +97,19 @@ struct PacketResults {
 
 GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid,
                                      PeInterrupt interrupt, const KernelOptions& kernel_options)
-    : rt_(runtime), grid_(grid), interrupt_(interrupt) {
+    : rt_(runtime),
+      grid_(grid),
+      interrupt_(interrupt),
+      pe_layout_(kernel_options.pe_layout != PeLayout::Auto ? kernel_options.pe_layout
+                 : runtime.info().type == "CPU"             ? PeLayout::Packets
+                                                            : PeLayout::Lanes) {
   const std::string defines = "-DGR_PE_LOCAL_SIZE=" + std::to_string(kPeLocalSize) + " " +
                               segmentCullDefines() + " " + kernel_options.defines();
-  kernel_ = KernelCall<ListsKernelArgs>(rt_.program("gridrt_lists.cl", defines), "gridrt_lists");
-  bundle_kernel_ =
-      KernelCall<BundlesKernelArgs>(rt_.program("gridrt_bundles.cl", defines), "gridrt_bundles");
+  const std::string suffix = pe_layout_ == PeLayout::Lanes ? "_lanes" : "";
+  kernel_ = KernelCall<ListsKernelArgs>(rt_.program("gridrt_lists" + suffix + ".cl", defines),
+                                        "gridrt_lists" + suffix);
+  bundle_kernel_ = KernelCall<BundlesKernelArgs>(
+      rt_.program("gridrt_bundles" + suffix + ".cl", defines), "gridrt_bundles" + suffix);
   checkTriangleLayout(grid.pe_triangles, kernel_options);
   pe_tri_begin_.uploadNow(rt_, grid.pe_tri_begin);
   pe_box_.uploadNow(rt_, grid.pe_hull.empty() ? grid.pe_box : grid.pe_hull);
@@ -176,6 +183,7 @@ void GridRtIntersector::runPes(size_t n, HitMode mode) {
   const std::vector<GrPeTask>& tasks = bins_.tasks;
   const size_t lanes = bins_.packets * GR_PACKET_LANES;
   const size_t result_floats = GR_LIST_RESULT_PLANES * lanes + 4 * bins_.packets;
+  cl::Event pe_run;
   rt_.runAndWait([&] {
     enqueueUnmaps();
     enqueueEntriesUnmap();
@@ -197,13 +205,14 @@ void GridRtIntersector::runPes(size_t n, HitMode mode) {
     args.interrupt = allInterrupt() ? 1 : 0;
     args.seg_planes = seg_planes_.get();
     args.seg_stride = seg_stride_;
-    kernel_.enqueue(rt_.queue(), cl::NDRange(tasks.size() * kPeLocalSize),
-                    cl::NDRange(kPeLocalSize), args);
+    kernel_.enqueue(rt_.queue(), cl::NDRange(tasks.size() * peLocalSize()),
+                    cl::NDRange(peLocalSize()), args, &pe_run);
     results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
     // Mapped again for the next batch's pairs once the kernel has read them.
     entries_map_ =
         mapBuffer<float>(rt_, entries_.get(), CL_MAP_WRITE_INVALIDATE_REGION, entries_.capacity());
   });
+  counters_.device_ms += eventMs(pe_run);
 }
 
 GridRtIntersector::~GridRtIntersector() {
@@ -573,6 +582,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     const size_t task_count = bundles.chunk_begin[chunk + 1] - bundles.chunk_begin[chunk];
     const size_t lanes = bundles.chunk_lanes[chunk], packets = lanes / GR_PACKET_LANES;
     if (!first_chunk) clock.restart();
+    cl::Event pe_run;
     rt_.runAndWait([&] {
       enqueueUnmaps();
       if (first_chunk) enqueuePlanesUnmap();
@@ -612,8 +622,8 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       args.set_planes = light_cull_planes_.reserve(rt_, 1);
       args.set_stride = int(light_cull_cache_.stride());
       args.sets_enabled = light_culling ? 1 : 0;
-      bundle_kernel_.enqueue(rt_.queue(), cl::NDRange(task_count * kPeLocalSize),
-                             cl::NDRange(kPeLocalSize), args);
+      bundle_kernel_.enqueue(rt_.queue(), cl::NDRange(task_count * peLocalSize()),
+                             cl::NDRange(peLocalSize()), args, &pe_run);
       results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
       // Mapped again for the next bundle batch once the kernel has read it.
       if (last_chunk)
@@ -622,6 +632,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     });
     const PacketResults results(results_map_, lanes, GR_BUNDLE_RESULT_PLANES);
     counters_.kernel_ms += clock.ms();
+    counters_.device_ms += eventMs(pe_run);
 
     // Phase 2: per ray, the smallest (t, prim) over its PEs' in-voxel hits
     // (PacketResults::keepNearer). Each thread owns a range of bundle order and reads the

@@ -19,9 +19,9 @@
 
 namespace gridrt {
 
-// Work-items per PE work-group (fixed: each new local size is a new compile on PoCL).
-// Each work-item tests one packet (GR_PACKET_LANES rays in float16 lanes), so one task
-// holds up to 64 rays.
+// Packets per PE work-group (fixed: each new local size is a new compile on PoCL). Each
+// work-item of the packet kernels tests one packet (GR_PACKET_LANES rays in float16 lanes),
+// each of the lane kernels one ray (PeLayout), so one task holds up to 64 rays.
 constexpr int kPeLocalSize = 4;
 constexpr int kPeTaskRays = kPeLocalSize * GR_PACKET_LANES;
 // Fewer shadow rays than this towards one light go through per-ray traversal lists: a
@@ -60,6 +60,8 @@ class GridRtIntersector : public Intersector {
   GridRtIntersector(const GridRtIntersector&) = delete;
   GridRtIntersector& operator=(const GridRtIntersector&) = delete;
   std::string name() const override { return allInterrupt() ? "gridrt-interrupt" : "gridrt"; }
+  // The PE kernels' layout this device runs (never Auto).
+  PeLayout peLayout() const { return pe_layout_; }
   void intersect(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                  RayDiagnostics* diagnostics) override;
   // Primary rays as camera bundles (camera_bundles.h): PEs receive runs of pixel tiles
@@ -106,6 +108,11 @@ class GridRtIntersector : public Intersector {
   ClRuntime& rt_;
   const UniformGrid& grid_;
   PeInterrupt interrupt_;
+  PeLayout pe_layout_;
+  // Work-items per PE work-group: kPeLocalSize packets, of one or GR_PACKET_LANES items.
+  int peLocalSize() const {
+    return pe_layout_ == PeLayout::Lanes ? kPeLocalSize * GR_PACKET_LANES : kPeLocalSize;
+  }
   // gridrt_lists.cl's gridrt_lists: the list path's pair packets.
   struct ListsKernelArgs {
     cl::Buffer tasks, pairs, pe_tri_begin, pe_tris, results;

@@ -16,8 +16,15 @@ namespace gridrt {
 enum class HitMode { Closest, AnyHit };
 
 // Build-time choices of the device kernels.
+// How GridRT's PE kernels give a work-group's rays to its work-items: Packets, 16 rays in the
+// float16 lanes of each work-item (a CPU device's SIMD: gridrt_lists.cl, gridrt_bundles.cl);
+// Lanes, one ray a work-item (a GPU's: gridrt_lists_lanes.cl, gridrt_bundles_lanes.cl); Auto,
+// Packets on a CPU device and Lanes on any other. The hits are the same.
+enum class PeLayout { Auto, Packets, Lanes };
+
 struct KernelOptions {
   bool watertight = false;  // Woop-Benthin-Wald watertight test instead of Moeller-Trumbore
+  PeLayout pe_layout = PeLayout::Auto;
   // The watertight test reads vertices, not edges (GrTriangle::vertex_layout).
   std::string defines() const { return watertight ? "-DGR_WATERTIGHT -DGR_TRIANGLE_VERTICES" : ""; }
 };
@@ -37,6 +44,7 @@ struct IntersectCounters {
   double binning_ms = 0;       // the (ray, PE) pairs binned by PE into the device's buffer
   double bundling_ms = 0;      // camera and light bundles, with the light's culling sets
   double kernel_ms = 0;        // upload + kernel + download
+  double device_ms = 0;        // of which the PE kernels ran on the device (gridrt; profiling)
   double reduce_ms = 0;        // phase-2 reduction on the host
   uint64_t split_batches = 0;  // batches too large for the device, run in parts (gridrt)
 

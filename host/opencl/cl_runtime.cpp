@@ -187,7 +187,8 @@ ClRuntime::ClRuntime(const std::string& spec, const std::string& binary_cache_di
                      device_.getInfo<CL_DRIVER_VERSION>();
   try {
     context_ = cl::Context(device_);
-    queue_ = cl::CommandQueue(context_, device_);
+    // Profiling: the PE kernels' own time on the device (eventMs), apart from transfers.
+    queue_ = cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE);
   } catch (const cl::Error& e) {
     throw RenderError("cannot create an OpenCL context on '" + info_.name +
                       "': " + clErrorName(e.err()) +
@@ -271,6 +272,17 @@ cl::Program& ClRuntime::program(const std::string& file, const std::string& defi
     // A driver without program binaries: nothing to keep.
   }
   return programs_.emplace(key, program).first->second;
+}
+
+double eventMs(const cl::Event& event) {
+  if (!event()) return 0.0;
+  try {
+    const cl_ulong start = event.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+    const cl_ulong end = event.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+    return end > start ? double(end - start) * 1e-6 : 0.0;
+  } catch (const cl::Error&) {
+    return 0.0;  // no profile for this command
+  }
 }
 
 void ClRuntime::runAndWait(const std::function<void()>& enqueue) {

@@ -90,4 +90,8 @@ class ClRuntime {
 // A one-line description of an OpenCL error code (e.g. "CL_OUT_OF_RESOURCES").
 std::string clErrorName(int code);
 
+// A finished command's own run time on the device (its profiling start to end), in ms; 0 for
+// an event that holds no command or no profile.
+double eventMs(const cl::Event& event);
+
 }  // namespace gridrt

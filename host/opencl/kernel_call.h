@@ -26,16 +26,16 @@ class KernelCall {
   }
 
   // Sets every argument from `args` and enqueues the kernel over `global` work-items in
-  // work-groups of `local`.
+  // work-groups of `local`; `done` (may be null) receives the command's event.
   void enqueue(cl::CommandQueue& queue, const cl::NDRange& global, const cl::NDRange& local,
-               const Args& args) {
+               const Args& args, cl::Event* done = nullptr) {
     std::apply(
         [&](const auto&... values) {
           cl_uint index = 0;
           (kernel_.setArg(index++, values), ...);
         },
         args.inOrder());
-    queue.enqueueNDRangeKernel(kernel_, cl::NullRange, global, local);
+    queue.enqueueNDRangeKernel(kernel_, cl::NullRange, global, local, nullptr, done);
   }
 
  private:

@@ -1,6 +1,6 @@
 // The rendering options reach the renderer: each of --aa, --intersector, --pe-interrupt,
-// --threads, --camera, --grid-density, --min-path-weight, --ambient and --stats, given on
-// the command line, changes what the program does in the way its help text says (the
+// --pe-layout, --threads, --camera, --grid-density, --min-path-weight, --ambient and --stats,
+// given on the command line, changes what the program does in the way its help text says (the
 // image, the AOVs, the rays traced or the grid in --stats-json), against the same render
 // without it. And
 // bad values of --look-at, --fov and --stats-json end the run with one line and the
@@ -125,17 +125,38 @@ TEST_F(CliOptions, PeInterruptSkipsPairsInEveryBatchWithTheSameImage) {
 
 // The host's list time split by pass: a Whitted frame walks the lists of its reflection and
 // refraction rays and bins their pairs, and bundles its camera rays; camera rays alone are
-// only bundled.
-TEST_F(CliOptions, StatisticsSplitTheHostListTimeByPass) {
+// only bundled. The PE kernels are timed on the device too.
+TEST_F(CliOptions, StatisticsSplitTheHostListTimeByPassAndTimeTheKernelsOnTheDevice) {
   const nlohmann::json& lists = plain_.stats["lists"];
   ASSERT_GT(secondaryRays(plain_.stats), 0u);
   EXPECT_GT(lists["walk_ms"].get<double>(), 0.0);
   EXPECT_GT(lists["binning_ms"].get<double>(), 0.0);
   EXPECT_GT(lists["bundling_ms"].get<double>(), 0.0);
+  // The PE kernels' own time on the device (profiling) is part of the kernel phase.
+  EXPECT_GT(plain_.stats["kernel_device_ms"].get<double>(), 0.0);
+  EXPECT_LE(plain_.stats["kernel_device_ms"].get<double>(),
+            plain_.stats["kernel_ms"].get<double>());
   const Render primary = render("lists_primary", {"--primary-only"});
   EXPECT_EQ(primary.stats["lists"]["walk_ms"].get<double>(), 0.0);
   EXPECT_EQ(primary.stats["lists"]["binning_ms"].get<double>(), 0.0);
   EXPECT_GT(primary.stats["lists"]["bundling_ms"].get<double>(), 0.0);
+}
+
+// --pe-layout picks gridrt's PE kernels: a CPU device runs the packets by default, the lanes
+// when asked, with the same image; the statistics name the layout that ran. Other
+// intersectors have no PE kernels and refuse it.
+TEST_F(CliOptions, PeLayoutPicksThePeKernelsNotTheImage) {
+  EXPECT_EQ(plain_.stats["pe_layout"], plain_.stats["device_type"] == "CPU" ? "packets" : "lanes");
+  for (const char* layout : {"packets", "lanes"}) {
+    const Render r = render(std::string("layout_") + layout, {"--pe-layout", layout});
+    EXPECT_EQ(r.stats["pe_layout"], layout);
+    EXPECT_EQ(differingPixels(plain_.image, r.image), 0u) << layout;
+    EXPECT_EQ(differingPixels(plain_.depth, r.depth), 0u) << layout;
+  }
+  const CommandResult bad =
+      runCommand({gridrtBinary(), "--accel", "dda", "--pe-layout", "lanes", "-o", "unused.png"});
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("--pe-layout: only with --accel gridrt"), std::string::npos) << bad.err;
 }
 
 // --threads N limits the host's loops and PoCL's threads together; the image does not

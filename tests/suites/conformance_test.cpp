@@ -68,8 +68,21 @@ class Conformance : public ::testing::Test {
       }
       dda.intersect(rays, HitMode::Closest, got, nullptr);
       EXPECT_EQ(test::hitMismatches(want, got, where + " dda"), 0u);
+      // The PE kernels of the layout this device does not pick by itself (PeLayout), with the
+      // interrupt: the same hits on every path.
+      GridRtIntersector other(*runtime_, grid, PeInterrupt::AllRays, otherLayout());
+      std::vector<Intersector*> any_hit_checked = {&gridrt, &dda};
+      if (otherLayoutAffordable(grid)) {
+        other.intersect(rays, HitMode::Closest, got, nullptr);
+        EXPECT_EQ(test::hitMismatches(want, got, where + " other layout"), 0u);
+        if (view) {
+          other.intersectPrimary(*view, rays, got, nullptr);
+          EXPECT_EQ(test::hitMismatches(want, got, where + " other layout camera path"), 0u);
+        }
+        any_hit_checked.push_back(&other);
+      }
       // Any-hit (shadow) mode: hit or miss must agree with the closest-hit answer.
-      for (Intersector* x : {static_cast<Intersector*>(&gridrt), static_cast<Intersector*>(&dda)}) {
+      for (Intersector* x : any_hit_checked) {
         x->intersect(rays, HitMode::AnyHit, got, nullptr);
         size_t differ = 0;
         for (size_t i = 0; i < rays.size(); ++i)
@@ -77,6 +90,21 @@ class Conformance : public ::testing::Test {
         EXPECT_EQ(differ, 0u) << where << " " << x->name() << " any-hit";
       }
     }
+  }
+
+  // The PE kernels' layout this device's default (PeLayout::Auto) does not run.
+  KernelOptions otherLayout() const {
+    KernelOptions options;
+    options.pe_layout = runtime_->info().type == "CPU" ? PeLayout::Lanes : PeLayout::Packets;
+    return options;
+  }
+  // The lane kernels cull nothing: on a grid of a few large PEs (the 69k-triangle bunny in
+  // one voxel) they are brute force, minutes on a CPU device. They are checked where a PE
+  // holds at most this many triangles on average.
+  static constexpr size_t kOtherLayoutMaxMeanPeTriangles = 512;
+  static bool otherLayoutAffordable(const UniformGrid& grid) {
+    return grid.pe_triangles.size() <=
+           kOtherLayoutMaxMeanPeTriangles * std::max<size_t>(grid.peCount(), 1);
   }
 
   static Camera cameraOf(const Scene& scene) {
@@ -160,6 +188,11 @@ class Conformance : public ::testing::Test {
         for (size_t i = 0; i < rays.size(); ++i)
           differ += (got[i].prim >= 0) != (want[i].prim >= 0);
         EXPECT_EQ(differ, 0u) << where << " light bundles any-hit";
+        if (!otherLayoutAffordable(grid)) continue;
+        GridRtIntersector other(*runtime_, grid, PeInterrupt::Off, otherLayout());
+        other.forceLightBundles();
+        other.intersectTowardsPoint(light, rays, HitMode::Closest, got);
+        EXPECT_EQ(test::hitMismatches(want, got, where + " other layout light bundles"), 0u);
       }
     }
   }
@@ -689,8 +722,10 @@ TEST_F(Conformance, LightBundlesWithTheLightOnAGridVertex) {
 // tested pair's triangles, the paper's count (IntersectCounters::tests); where light
 // culling works on those PEs, and packet and segment culling on camera rays on bunny_res4
 // (PEs of up to 52 triangles, through either path), it is less, but never less than one
-// test a hit.
+// test a hit. Culling is the packet kernels' own: they run here on any device.
 TEST_F(Conformance, TheKernelsCountTheTestsTheyRunAfterCulling) {
+  KernelOptions packets;
+  packets.pe_layout = PeLayout::Packets;
   std::vector<GrTriangle> lattice;
   const int n = 8;
   for (int z = 0; z < n; ++z)
@@ -712,7 +747,7 @@ TEST_F(Conformance, TheKernelsCountTheTestsTheyRunAfterCulling) {
     return count;
   };
   std::vector<GrHit> hits;
-  GridRtIntersector lists(*runtime_, grid, PeInterrupt::Off);
+  GridRtIntersector lists(*runtime_, grid, PeInterrupt::Off, packets);
   lists.intersect(randomRays(box, 20000, 3), HitMode::Closest, hits, nullptr);
   EXPECT_GT(hitsOf(hits), 1000u);
   EXPECT_EQ(lists.counters().tests_run, lists.counters().tests) << "list path";
@@ -722,13 +757,13 @@ TEST_F(Conformance, TheKernelsCountTheTestsTheyRunAfterCulling) {
     const glm::vec3 o(r.ox, r.oy, r.oz), d = glm::normalize(light - o);
     shadow.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, glm::length(light - o)});
   }
-  GridRtIntersector bundles(*runtime_, grid, PeInterrupt::Off);
+  GridRtIntersector bundles(*runtime_, grid, PeInterrupt::Off, packets);
   bundles.forceLightBundles();
   bundles.allowLightCulling(false);
   bundles.intersectTowardsPoint(light, shadow, HitMode::Closest, hits);
   EXPECT_GT(hitsOf(hits), 1000u);
   EXPECT_EQ(bundles.counters().tests_run, bundles.counters().tests) << "light bundles";
-  GridRtIntersector light_culled(*runtime_, grid, PeInterrupt::Off);
+  GridRtIntersector light_culled(*runtime_, grid, PeInterrupt::Off, packets);
   light_culled.forceLightBundles();
   light_culled.intersectTowardsPoint(light, shadow, HitMode::Closest, hits);
   EXPECT_GE(light_culled.counters().tests_run, hitsOf(hits)) << "light culling";
@@ -740,7 +775,7 @@ TEST_F(Conformance, TheKernelsCountTheTestsTheyRunAfterCulling) {
   UniformGrid bunny_grid = buildUniformGrid(tris, b, GridSettings{});
   PinholeView view = PinholeView::of(scene.camera, 320, 240, PixelWindow{});
   const std::vector<GrRay> camera = cameraRays(scene, 320, 240);
-  GridRtIntersector culling(*runtime_, bunny_grid, PeInterrupt::Off);
+  GridRtIntersector culling(*runtime_, bunny_grid, PeInterrupt::Off, packets);
   for (const bool camera_path : {true, false}) {
     const IntersectCounters before = culling.counters();
     if (camera_path)

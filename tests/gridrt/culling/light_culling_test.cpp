@@ -201,8 +201,10 @@ TEST(LightCulling, ShadowRaysHitWhatBruteForceHits) {
   brute.intersect(rays, HitMode::Closest, want, nullptr);
   const UniformGrid grid = buildUniformGrid(tris, bounds, GridSettings{});
   uint64_t tests_run[2] = {0, 0};
+  KernelOptions packets;  // culling is the packet kernels' (PeLayout): on any device
+  packets.pe_layout = PeLayout::Packets;
   for (bool light_culling : {true, false}) {
-    GridRtIntersector gridrt(*runtime, grid, PeInterrupt::Off);
+    GridRtIntersector gridrt(*runtime, grid, PeInterrupt::Off, packets);
     gridrt.forceLightBundles();
     gridrt.allowLightCulling(light_culling);
     gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
