@@ -10,6 +10,10 @@
 #   paper.csv/.png     tools/bench.py paper
 #   images.tgz         the default scene's Whitted frame (640x480, depth 5) by gridrt on the
 #                      device and by the exact host reference, as PNG, to compare elsewhere
+#   layouts.csv        both PE kernel layouts (--pe-layout packets, lanes) in turns, 3 rounds:
+#                      the default Whitted frame and the bunny's 1280x960 camera rays, each the
+#                      median of 10 frames after a first (frame, kernel phase, the kernels' own
+#                      device time, host passes)
 # BUILD is a build folder, or what tools/pack_build.sh packed of one; the tests find the
 # source tree and BUILD at the paths they were built with (docs/performance.md, "On other
 # devices"). PYTHON: the interpreter for bench.py, with matplotlib (default python3).
@@ -62,3 +66,28 @@ for set in whitted paper; do
     --out "$out" >>"$log" 2>&1
   step "bench $set: exit $?"
 done
+
+# Both PE kernel layouts in turns on the same frames.
+step "layouts"
+layouts=$out/layouts.csv
+echo "scene,pe_layout,round,frame_ms,kernel_ms,kernel_device_ms,lists_ms,reduce_ms,shade_ms" >"$layouts"
+stats=$(mktemp)
+for round in 1 2 3; do
+  for layout in packets lanes; do
+    for scene in whitted bunny; do
+      if [ $scene = whitted ]; then
+        frame=(--width 640 --height 480 --max-depth 5)
+      else
+        frame=("$root/scenes/models/bunny.glb" --width 1280 --height 960 --primary-only)
+      fi
+      timeout 120 "$build/gridrt" "${frame[@]}" -q --repeat 10 --pe-layout $layout \
+        --stats-json "$stats" -o "$images/layout.png" >>"$log" 2>&1 || continue
+      "${PYTHON:-python3}" -c 'import json, sys
+s = json.load(open(sys.argv[1]))
+print(",".join(sys.argv[2:] + ["%.3f" % s[k] for k in ("frame_ms", "kernel_ms",
+      "kernel_device_ms", "lists_ms", "reduce_ms", "shade_ms")]))' "$stats" $scene $layout \
+        $round >>"$layouts"
+    done
+  done
+done
+step "layouts: done"
