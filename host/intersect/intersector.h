@@ -15,13 +15,13 @@ namespace gridrt {
 
 enum class HitMode { Closest, AnyHit };
 
-// Build-time choices of the device kernels.
 // How GridRT's PE kernels give a work-group's rays to its work-items: Packets, 16 rays in the
 // float16 lanes of each work-item (a CPU device's SIMD: gridrt_lists.cl, gridrt_bundles.cl);
 // Lanes, one ray a work-item (a GPU's: gridrt_lists_lanes.cl, gridrt_bundles_lanes.cl); Auto,
 // Packets on a CPU device and Lanes on any other. The hits are the same.
 enum class PeLayout { Auto, Packets, Lanes };
 
+// Build-time choices of the device kernels.
 struct KernelOptions {
   bool watertight = false;  // Woop-Benthin-Wald watertight test instead of Moeller-Trumbore
   PeLayout pe_layout = PeLayout::Auto;
