@@ -336,10 +336,18 @@ TEST_F(Watertight, GridIntersectorsAgreeWithBruteOnEdgeAndVertexRays) {
     s.automatic = false;
     s.dims = {n, n, n};
     UniformGrid grid = buildUniformGrid(tris, sceneBounds(scene), s);
-    GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, watertight);
+    // Both PE kernel layouts (PeLayout): the packets' 16-lane test and the lanes' scalar one.
+    for (PeLayout layout : {PeLayout::Packets, PeLayout::Lanes}) {
+      KernelOptions options = watertight;
+      options.pe_layout = layout;
+      GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, options);
+      gridrt.intersect(rays, HitMode::Closest, got, nullptr);
+      EXPECT_EQ(test::hitMismatches(want, got,
+                                    "gridrt " + std::to_string(n) +
+                                        (layout == PeLayout::Lanes ? " lanes" : " packets")),
+                0u);
+    }
     DdaIntersector dda(*runtime_, grid, watertight);
-    gridrt.intersect(rays, HitMode::Closest, got, nullptr);
-    EXPECT_EQ(test::hitMismatches(want, got, "gridrt " + std::to_string(n)), 0u);
     dda.intersect(rays, HitMode::Closest, got, nullptr);
     EXPECT_EQ(test::hitMismatches(want, got, "dda " + std::to_string(n)), 0u);
   }
