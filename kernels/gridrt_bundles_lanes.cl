@@ -74,10 +74,7 @@ gridrt_bundles_lanes(__global const GrBundleTask* tasks, __global const float* p
         best = gr_pe_closest_lane(ox, oy, oz, dx, dy, dz, pe_tris, begin, end, tmin, tmax, t_enter,
                                   t_exit, any_hit, &tests);
         if (best.prim >= 0) {
-          results[GR_RESULT_T * all_lanes + out] = best.t;
-          ((__global int*)(results + GR_RESULT_PRIM * all_lanes))[out] = best.prim;
-          results[GR_RESULT_U * all_lanes + out] = best.u;
-          results[GR_RESULT_V * all_lanes + out] = best.v;
+          gr_lane_store_hit(results, all_lanes, out, &best);
           if (interrupt) atomic_min(&first_hit_key[ray], as_int(best.t));
         }
       }

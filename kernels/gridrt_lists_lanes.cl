@@ -60,12 +60,7 @@ gridrt_lists_lanes(__global const GrPeTask* tasks, __global const float* pairs,
   const size_t all_lanes = (size_t)lanes_total;
   const int out = packet_index * GR_PACKET_LANES + lane;
   const int hit = best.prim >= 0;
-  if (hit) {
-    results[GR_RESULT_T * all_lanes + out] = best.t;
-    ((__global int*)(results + GR_RESULT_PRIM * all_lanes))[out] = best.prim;
-    results[GR_RESULT_U * all_lanes + out] = best.u;
-    results[GR_RESULT_V * all_lanes + out] = best.v;
-  }
+  if (hit) gr_lane_store_hit(results, all_lanes, out, &best);
   if (hit || skipped)
     ((__global int*)(results + GR_RESULT_RAY * all_lanes))[out] = ray_bits & GR_PAIR_RAY_INDEX;
   if (lane == 0)

@@ -100,9 +100,7 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
     : rt_(runtime),
       grid_(grid),
       interrupt_(interrupt),
-      pe_layout_(kernel_options.pe_layout != PeLayout::Auto ? kernel_options.pe_layout
-                 : runtime.info().type == "CPU"             ? PeLayout::Packets
-                                                            : PeLayout::Lanes) {
+      pe_layout_(peLayoutFor(kernel_options.pe_layout, runtime.info())) {
   const std::string defines = "-DGR_PE_LOCAL_SIZE=" + std::to_string(kPeLocalSize) + " " +
                               segmentCullDefines() + " " + kernel_options.defines();
   const std::string suffix = pe_layout_ == PeLayout::Lanes ? "_lanes" : "";

@@ -50,6 +50,12 @@ enum class PeInterrupt {
                // balance changes with the machine
 };
 
+// The layout `asked` for on `device`: Auto is Packets on a CPU device, Lanes on any other.
+inline PeLayout peLayoutFor(PeLayout asked, const DeviceInfo& device) {
+  if (asked != PeLayout::Auto) return asked;
+  return device.isCpu() ? PeLayout::Packets : PeLayout::Lanes;
+}
+
 class GridRtIntersector : public Intersector {
  public:
   GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid, PeInterrupt interrupt,

@@ -234,7 +234,7 @@ cl::Program& ClRuntime::program(const std::string& file, const std::string& defi
     options += std::string(" ") + extra;
   if (info_.correctly_rounded_div_sqrt) options += " -cl-fp32-correctly-rounded-divide-sqrt";
   // The kernels' software prefetches are for a CPU device's caches (pe_closest16.h).
-  if (info_.type == "CPU") options += " -DGR_CPU_DEVICE";
+  if (info_.isCpu()) options += " -DGR_CPU_DEVICE";
   const std::vector<cl::Device> devices{device_};
   const std::string cache_key = device_identity_ + "\n" + options + "\n" + source;
   if (std::optional<std::vector<unsigned char>> binary = binaries_.load(cache_key)) {

@@ -24,6 +24,7 @@ struct DeviceInfo {
   unsigned long long global_mem_bytes = 0;
   unsigned long long max_alloc_bytes = 0;
   bool correctly_rounded_div_sqrt = false;
+  bool isCpu() const { return type == "CPU"; }
 };
 
 // Every device of every platform, in platform:device order. Empty if no platform exists.

@@ -61,6 +61,16 @@ inline GrLaneHit gr_pe_closest_lane(float ox, float oy, float oz, float dx, floa
   return best;
 }
 
+/* A lane's hit into its lane `out` of the result planes (GR_RESULT_*, each lanes_total long),
+ * as gr_store_packet_hits writes a packet's. */
+inline void gr_lane_store_hit(__global float* results, size_t lanes_total, int out,
+                              const GrLaneHit* hit) {
+  results[GR_RESULT_T * lanes_total + out] = hit->t;
+  ((__global int*)(results + GR_RESULT_PRIM * lanes_total))[out] = hit->prim;
+  results[GR_RESULT_U * lanes_total + out] = hit->u;
+  results[GR_RESULT_V * lanes_total + out] = hit->v;
+}
+
 /* A work-group's packets' masks in local memory, GR_LANE_MASK_FIELDS ints a packet
  * (GrPacketMasks' fields in order), gathered from the packet's 16 work-items with local
  * atomics: each sets its own lane's bits and adds its tests. */

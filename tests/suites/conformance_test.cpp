@@ -95,7 +95,9 @@ class Conformance : public ::testing::Test {
   // The PE kernels' layout this device's default (PeLayout::Auto) does not run.
   KernelOptions otherLayout() const {
     KernelOptions options;
-    options.pe_layout = runtime_->info().type == "CPU" ? PeLayout::Lanes : PeLayout::Packets;
+    options.pe_layout = peLayoutFor(PeLayout::Auto, runtime_->info()) == PeLayout::Packets
+                            ? PeLayout::Lanes
+                            : PeLayout::Packets;
     return options;
   }
   // The lane kernels cull nothing: on a grid of a few large PEs (the 69k-triangle bunny in
