@@ -718,6 +718,64 @@ TEST_F(Conformance, LightBundlesWithTheLightOnAGridVertex) {
   EXPECT_EQ(lightBundleMismatches(*runtime_, tris, rays, light, {4, 4, 4}, 50), 0u);
 }
 
+// The light bundles hand a PE every ray whose line may pass the part of its voxel its
+// triangles fill (pe_hulls.h), and the kernel's slab test keeps the (ray, PE) pairs of the
+// traversal lists there: with every voxel filled, PE by PE as many pairs as the list path
+// walks. Half the rays have an exact zero in their direction, towards a light that lies
+// inside a column of voxels, 1 % of a voxel from the next: their cube cells overlap the
+// neighbouring columns' outlines, so those PEs receive them, and only the slab test's rule
+// for a zero direction (inside the slab for every t or for none) keeps them out.
+TEST_F(Conformance, LightBundlesKeepTheListsPairsForRaysAlongAGridAxis) {
+  const int n = 8;
+  std::vector<GrTriangle> lattice;
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const glm::vec3 c{float(x), float(y), float(z)};  // a triangle spanning its cell
+        lattice.push_back(tri(c, c + glm::vec3(1.0f, 1.0f, 0.5f), c + glm::vec3(0.5f, 0.0f, 1.0f),
+                              int(lattice.size())));
+      }
+  Bounds box;
+  box.grow(glm::vec3(0.0f));
+  box.grow(glm::vec3(float(n)));
+  UniformGrid grid = buildUniformGrid(lattice, box, dims(n, n, n));
+  ASSERT_EQ(grid.peCount(), n * n * n);
+  const glm::vec3 light(3.99f, 3.0f * n, 4.99f);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.05f, n - 0.05f);
+  std::vector<GrRay> rays;
+  size_t along_axis = 0;
+  for (int k = 0; k < 4096; ++k) {
+    // Every fourth ray starts in the light's x plane, every fourth in its z plane.
+    glm::vec3 o(k % 4 == 0 ? light.x : u(rng), 0.01f, k % 4 == 1 ? light.z : u(rng));
+    const glm::vec3 to = light - o;
+    const float distance = glm::length(to);
+    const glm::vec3 d = to / distance;
+    along_axis += d.x == 0.0f || d.z == 0.0f;
+    rays.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, distance});
+  }
+  ASSERT_EQ(along_axis, 2048u);
+  std::vector<GrHit> hits;
+  GridRtIntersector lists(*runtime_, grid, PeInterrupt::Off);
+  lists.intersect(rays, HitMode::Closest, hits, nullptr);
+  for (const PeLayout layout : {PeLayout::Packets, PeLayout::Lanes})
+    for (const bool light_culling : {false, true}) {
+      KernelOptions options;
+      options.pe_layout = layout;
+      GridRtIntersector bundles(*runtime_, grid, PeInterrupt::Off, options);
+      bundles.forceLightBundles();
+      bundles.allowLightCulling(light_culling);
+      bundles.intersectTowardsPoint(light, rays, HitMode::Closest, hits);
+      const std::string where = std::string(layout == PeLayout::Packets ? "packets" : "lanes") +
+                                (light_culling ? ", light culling" : "");
+      size_t differ = 0;
+      for (int pe = 0; pe < grid.peCount(); ++pe)
+        differ += bundles.raysPerPe()[pe] != lists.raysPerPe()[pe];
+      EXPECT_EQ(differ, 0u) << "PEs whose pairs differ: " << where;
+      EXPECT_EQ(bundles.counters().list_entries, lists.counters().list_entries) << where;
+    }
+}
+
 // The kernels count the ray-triangle tests they run (IntersectCounters::tests_run). With
 // nothing to cull (PEs of one triangle, below the segment culling's minimum, on the list
 // path and the light bundles without light culling; no culling frame) that is every
