@@ -113,6 +113,8 @@ struct LightLanes {
   alignas(64) float ex[kSurfaceLanes], ey[kSurfaceLanes], ez[kSurfaceLanes];
   alignas(64) float cos_theta[kSurfaceLanes];
   alignas(64) int lit[kSurfaceLanes];
+  // Phong only: the highlight's cosine and power (phong_highlights.h).
+  alignas(64) float rv[kSurfaceLanes], highlight[kSurfaceLanes];
 };
 
 void computeLightLanes(const Light& light, const SurfaceLanes& s, LightLanes& out);

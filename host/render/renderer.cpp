@@ -8,6 +8,7 @@
 #include "camera_rays.h"
 #include "default_lighting.h"
 #include "parallel_loops.h"
+#include "phong_highlights.h"
 #include "pixel_blocks.h"
 #include "prefault.h"
 #include "prepared_triangles.h"
@@ -664,6 +665,14 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
           applyNormalMap(lanes, k, block_path[k].cone);
       for (size_t l = 0; l < lights_.size(); ++l)
         computeLightLanes(lights_[l], lanes, out.light_lanes[l]);
+      if (settings_.shading == ShadingModel::Phong) {
+        // The highlights for each material's own exponent; a textured one's is made below.
+        alignas(64) float exponent[kSurfaceLanes];
+        for (int k = 0; k < kSurfaceLanes; ++k)
+          exponent[k] = material_terms_[scene_.material_of[lanes.tri[k]]].phong_exponent;
+        for (size_t l = 0; l < lights_.size(); ++l)
+          computeHighlights(lanes, exponent, out.light_lanes[l]);
+      }
       for (int k = 0; k < count; ++k) {
         const size_t i = block_ray[k];
         const PathRay& path = block_path[k];
@@ -725,10 +734,9 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
             direct = gltfBrdf(base_color, metallic, roughness, n, -d, to_light, mat.transmission) *
                      e * cos_theta;
           } else {
-            glm::vec3 r = reflectDirection(-to_light, n);
-            float rv = std::max(0.0f, glm::dot(r, -d));
-            // pow(0, e) is 0 for the exponent (>= 1): no call for the half turned away.
-            const float highlight = rv > 0.0f ? std::pow(rv, terms.phong_exponent) : 0.0f;
+            const float highlight = surface_textures_.varies(material)
+                                        ? phongHighlight(light.rv[k], terms.phong_exponent)
+                                        : light.highlight[k];
             direct = terms.diffuse / kPi * e * cos_theta + terms.specular * e * highlight;
           }
           glm::vec3 contribution = weight * direct;
