@@ -10,10 +10,12 @@
 #   paper.csv/.png     tools/bench.py paper
 #   images.tgz         the default scene's Whitted frame (640x480, depth 5) by gridrt on the
 #                      device and by the exact host reference, as PNG, to compare elsewhere
-#   layouts.csv        both PE kernel layouts (--pe-layout packets, lanes) in turns, 3 rounds:
-#                      the default Whitted frame and the bunny's 1280x960 camera rays, each the
-#                      median of 10 frames after a first (frame, kernel phase, the kernels' own
-#                      device time, host passes)
+#   layouts.csv        both PE kernel layouts (--pe-layout packets, lanes) and both batch
+#                      transfers (--transfer map, copy) in turns, 3 rounds: the default Whitted
+#                      frame and the bunny's 1280x960 camera rays, each the median of 10 frames
+#                      after a first (frame, kernel phase, the kernels' own device time, host
+#                      passes)
+# GPU_CHECK_BENCH=0 leaves the two bench.py runs out (a shorter check).
 # BUILD is a build folder, or what tools/pack_build.sh packed of one; the tests find the
 # source tree and BUILD at the paths they were built with (docs/performance.md, "On other
 # devices"). PYTHON: the interpreter for bench.py, with matplotlib (default python3).
@@ -60,20 +62,23 @@ timeout 120 "$build/gridrt" "${whitted[@]}" --accel reference -o "$images/refere
 tar czf "$out/images.tgz" -C "$images" .
 step "images: done"
 
-for set in whitted paper; do
+benches="whitted paper"
+[ "${GPU_CHECK_BENCH:-1}" = 0 ] && benches=
+for set in $benches; do
   step "bench $set"
   GRIDRT_BINARY="$build/gridrt" timeout 400 "${PYTHON:-python3}" "$root/tools/bench.py" "$set" --frames 7 \
     --out "$out" >>"$log" 2>&1
   step "bench $set: exit $?"
 done
 
-# Both PE kernel layouts in turns on the same frames.
+# Both PE kernel layouts and both batch transfers in turns on the same frames.
 step "layouts"
 layouts=$out/layouts.csv
-echo "scene,pe_layout,round,frame_ms,kernel_ms,kernel_device_ms,lists_ms,reduce_ms,shade_ms" >"$layouts"
+echo "scene,pe_layout,transfer,round,frame_ms,kernel_ms,kernel_device_ms,lists_ms,reduce_ms,shade_ms" >"$layouts"
 stats=$(mktemp)
 for round in 1 2 3; do
-  for layout in packets lanes; do
+  for run in packets,map packets,copy lanes,map lanes,copy; do
+    layout=${run%,*} transfer=${run#*,}
     for scene in whitted bunny; do
       if [ $scene = whitted ]; then
         frame=(--width 640 --height 480 --max-depth 5)
@@ -81,12 +86,12 @@ for round in 1 2 3; do
         frame=("$root/scenes/models/bunny.glb" --width 1280 --height 960 --primary-only)
       fi
       timeout 120 "$build/gridrt" "${frame[@]}" -q --repeat 10 --pe-layout $layout \
-        --stats-json "$stats" -o "$images/layout.png" >>"$log" 2>&1 || continue
+        --transfer $transfer --stats-json "$stats" -o "$images/layout.png" >>"$log" 2>&1 || continue
       "${PYTHON:-python3}" -c 'import json, sys
 s = json.load(open(sys.argv[1]))
 print(",".join(sys.argv[2:] + ["%.3f" % s[k] for k in ("frame_ms", "kernel_ms",
       "kernel_device_ms", "lists_ms", "reduce_ms", "shade_ms")]))' "$stats" $scene $layout \
-        $round >>"$layouts"
+        $transfer $round >>"$layouts"
     done
   done
 done

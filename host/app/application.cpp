@@ -348,7 +348,7 @@ std::unique_ptr<Intersector> makeIntersector(const Options& o, ClRuntime& runtim
                                              const std::vector<GrTriangle>& triangles,
                                              const UniformGrid& grid, GridRtIntersector*& gridrt) {
   gridrt = nullptr;
-  const KernelOptions kernel{o.watertight, o.pe_layout};
+  const KernelOptions kernel{o.watertight, o.pe_layout, o.transfer};
   if (o.accel == AccelKind::Brute)
     return std::make_unique<BruteIntersector>(runtime, triangles, kernel);
   if (o.accel == AccelKind::Reference) return std::make_unique<ReferenceIntersector>(scene);
@@ -484,6 +484,7 @@ FrameResult renderScene(const Options& o, ClRuntime& runtime, const Scene& scene
                         {"tests_mean", tests_pe.mean / frames},
                         {"tests_max", tests_pe.max / frames}};
     stats["pe_layout"] = gridrt->peLayout() == PeLayout::Lanes ? "lanes" : "packets";
+    stats["transfer"] = gridrt->batchTransfer() == BatchTransfer::Copy ? "copy" : "map";
     stats["interrupt"] = {{"camera_rays", gridrt->cameraInterrupt()},
                           {"all_rays", gridrt->allInterrupt()},
                           {"skipped_pairs", c.skipped_pairs}};

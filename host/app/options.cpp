@@ -130,6 +130,7 @@ struct RawOptions {
   std::string accel = "gridrt", grid = "auto", background, ray_offset = "robust", look_at;
   std::string crop, crop_output = "full", intersector = "mt", aa = "uniform", frames;
   std::string shading = "phong", format, pe_layout = "auto";
+  std::string transfer = "map";
   std::vector<std::string> aovs;
   std::set<std::string> given;  // the options on the command line, e.g. "--spp"
 };
@@ -160,6 +161,8 @@ void checkCombinations(Options& o, const RawOptions& raw) {
     throw UsageError("--animation: only with --time or --frames");
   if (given("--pe-layout") && o.accel != AccelKind::GridRt)
     throw UsageError("--pe-layout: only with --accel gridrt (its PE kernels)");
+  if (given("--transfer") && o.accel != AccelKind::GridRt)
+    throw UsageError("--transfer: only with --accel gridrt (its batches)");
   const bool has_pes = o.accel == AccelKind::GridRt || o.accel == AccelKind::Dda;
   std::vector<std::string> names = o.aov_layers;
   for (const auto& aov : o.aovs) names.push_back(aov.first);
@@ -304,6 +307,11 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
                  "(a ray a work-item) or auto (packets on a CPU device, lanes on others)")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "packets", "lanes"}));
+  app.add_option("--transfer", raw.transfer,
+                 "gridrt's batches: map (the device's buffers mapped whole) or copy (only the "
+                 "bytes used, from and to host arrays)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"map", "copy"}));
   app.add_flag("--primary-only", o.primary_only,
                "primary rays only, headlight shading (the paper's measurement)");
   app.add_option("--aov", raw.aovs,
@@ -438,6 +446,7 @@ void finish(Options& o, const RawOptions& raw) {
   o.pe_layout = raw.pe_layout == "packets" ? PeLayout::Packets
                 : raw.pe_layout == "lanes" ? PeLayout::Lanes
                                            : PeLayout::Auto;
+  o.transfer = raw.transfer == "copy" ? BatchTransfer::Copy : BatchTransfer::Map;
   o.shading = raw.shading == "gltf" ? ShadingModel::Gltf : ShadingModel::Phong;
   o.adaptive_aa = raw.aa == "adaptive";
   if (!raw.background.empty()) o.background = parseVec3("--background", raw.background);

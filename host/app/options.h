@@ -43,10 +43,11 @@ struct Options {
   int threads = 0;     // --threads: host loops and the CPU device; 0 = every core
   bool list_devices = false;
   AccelKind accel = AccelKind::GridRt;
-  GridSettings grid;                    // --grid auto | NX,NY,NZ; --grid-density
-  bool pe_interrupt = false;            // emulate the paper's interrupt on the device
-  PeLayout pe_layout = PeLayout::Auto;  // --pe-layout: gridrt's PE kernels
-  bool primary_only = false;            // primary rays, headlight shading
+  GridSettings grid;                            // --grid auto | NX,NY,NZ; --grid-density
+  bool pe_interrupt = false;                    // emulate the paper's interrupt on the device
+  PeLayout pe_layout = PeLayout::Auto;          // --pe-layout: gridrt's PE kernels
+  BatchTransfer transfer = BatchTransfer::Map;  // --transfer: how gridrt's batches cross
+  bool primary_only = false;                    // primary rays, headlight shading
   std::vector<std::pair<std::string, std::string>> aovs;  // NAME=FILE
   // --aov-file FILE.exr: the image and the AOVs aov_layers names (bare --aov NAME; without
   // one, kLayerAovNames) as the layers of one OpenEXR file.

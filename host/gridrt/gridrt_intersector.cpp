@@ -100,7 +100,8 @@ GridRtIntersector::GridRtIntersector(ClRuntime& runtime, const UniformGrid& grid
     : rt_(runtime),
       grid_(grid),
       interrupt_(interrupt),
-      pe_layout_(peLayoutFor(kernel_options.pe_layout, runtime.info())) {
+      pe_layout_(peLayoutFor(kernel_options.pe_layout, runtime.info())),
+      transfer_(kernel_options.transfer) {
   const std::string defines = "-DGR_PE_LOCAL_SIZE=" + std::to_string(kPeLocalSize) + " " +
                               segmentCullDefines() + " " + kernel_options.defines();
   const std::string suffix = pe_layout_ == PeLayout::Lanes ? "_lanes" : "";
@@ -191,6 +192,7 @@ void GridRtIntersector::runPes(size_t n, HitMode mode) {
     first_hit_key_.reserve(rt_, n);
     if (allInterrupt())
       rt_.queue().enqueueFillBuffer(first_hit_key_.get(), int(INT_MAX), 0, n * sizeof(int));
+    enqueueUpload(entries_, entries_host_, 0, bins_.packets * kPairPacketFloats);
     ListsKernelArgs args;
     args.tasks = tasks_.get();
     args.pairs = entries_.get();
@@ -205,10 +207,9 @@ void GridRtIntersector::runPes(size_t n, HitMode mode) {
     args.seg_stride = seg_stride_;
     kernel_.enqueue(rt_.queue(), cl::NDRange(tasks.size() * peLocalSize()),
                     cl::NDRange(peLocalSize()), args, &pe_run);
-    results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
+    results_map_ = enqueueResultsRead(result_floats);
     // Mapped again for the next batch's pairs once the kernel has read them.
-    entries_map_ =
-        mapBuffer<float>(rt_, entries_.get(), CL_MAP_WRITE_INVALIDATE_REGION, entries_.capacity());
+    entries_map_ = enqueueWritable(entries_, entries_host_, entries_.capacity());
   });
   counters_.device_ms += eventMs(pe_run);
 }
@@ -227,19 +228,45 @@ GridRtIntersector::~GridRtIntersector() {
 }
 
 void GridRtIntersector::enqueueUnmaps() {
-  if (results_map_)
+  if (results_map_ && !copying())
     rt_.queue().enqueueUnmapMemObject(results_.get(), const_cast<float*>(results_map_));
   results_map_ = nullptr;
 }
 
 void GridRtIntersector::enqueueEntriesUnmap() {
-  if (entries_map_) rt_.queue().enqueueUnmapMemObject(entries_.get(), entries_map_);
+  if (entries_map_ && !copying()) rt_.queue().enqueueUnmapMemObject(entries_.get(), entries_map_);
   entries_map_ = nullptr;
 }
 
 void GridRtIntersector::enqueuePlanesUnmap() {
-  if (planes_map_) rt_.queue().enqueueUnmapMemObject(planes_.get(), planes_map_);
+  if (planes_map_ && !copying()) rt_.queue().enqueueUnmapMemObject(planes_.get(), planes_map_);
   planes_map_ = nullptr;
+}
+
+float* GridRtIntersector::enqueueWritable(DeviceBuffer<float>& buffer, std::vector<float>& host,
+                                          size_t floats) {
+  buffer.reserve(rt_, floats);
+  if (!copying())
+    return mapBuffer<float>(rt_, buffer.get(), CL_MAP_WRITE_INVALIDATE_REGION, buffer.capacity());
+  if (host.size() < buffer.capacity()) host.resize(buffer.capacity());
+  return host.data();
+}
+
+void GridRtIntersector::enqueueUpload(DeviceBuffer<float>& buffer, const std::vector<float>& host,
+                                      size_t offset, size_t floats) {
+  if (!copying() || floats == 0) return;
+  // Non-blocking: `host` is not written again before runAndWait has waited for the copy.
+  rt_.queue().enqueueWriteBuffer(buffer.get(), CL_FALSE, offset * sizeof(float),
+                                 floats * sizeof(float), host.data() + offset);
+}
+
+const float* GridRtIntersector::enqueueResultsRead(size_t floats) {
+  if (!copying()) return mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, floats);
+  if (results_host_.size() < floats) results_host_.resize(std::max(floats, results_.capacity()));
+  if (floats)
+    rt_.queue().enqueueReadBuffer(results_.get(), CL_FALSE, 0, floats * sizeof(float),
+                                  results_host_.data());
+  return results_host_.data();
 }
 
 void GridRtIntersector::finishBatch(const std::vector<int>& pairs_per_pe, size_t rays,
@@ -281,9 +308,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
     rt_.runAndWait([&] {
       enqueueUnmaps();
       enqueueEntriesUnmap();
-      entries_.reserve(rt_, pair_floats);
-      entries_map_ = mapBuffer<float>(rt_, entries_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
-                                      entries_.capacity());
+      entries_map_ = enqueueWritable(entries_, entries_host_, pair_floats);
     });
   }
   binByPe(lists_, rays.data(), grid_.peCount(), kPeTaskRays, bins_, entries_map_);
@@ -500,9 +525,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     rt_.runAndWait([&] {
       enqueueUnmaps();
       enqueuePlanesUnmap();
-      planes_.reserve(rt_, GR_PLANES * stride);
-      planes = planes_map_ =
-          mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION, planes_.capacity());
+      planes = planes_map_ = enqueueWritable(planes_, planes_host_, GR_PLANES * stride);
     });
   }
   int differing = 0, uncovered = 0;
@@ -583,7 +606,15 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     cl::Event pe_run;
     rt_.runAndWait([&] {
       enqueueUnmaps();
-      if (first_chunk) enqueuePlanesUnmap();
+      if (first_chunk) {
+        enqueuePlanesUnmap();
+        // The planes written: the directions, and the starts unless the rays share one.
+        static_assert(GR_PLANE_DY == GR_PLANE_DX + 1 && GR_PLANE_DZ == GR_PLANE_DX + 2);
+        if (common_origin)
+          enqueueUpload(planes_, planes_host_, GR_PLANE_DX * stride, 3 * stride);
+        else
+          enqueueUpload(planes_, planes_host_, 0, GR_PLANES * stride);
+      }
       if (task_count == 0) return;
       bundle_tasks_.upload(rt_, chunk_tasks, task_count);
       // t, prim, u, v per lane, then the packets' masks (4 ints each): one buffer.
@@ -622,11 +653,9 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       args.sets_enabled = light_culling ? 1 : 0;
       bundle_kernel_.enqueue(rt_.queue(), cl::NDRange(task_count * peLocalSize()),
                              cl::NDRange(peLocalSize()), args, &pe_run);
-      results_map_ = mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, result_floats);
+      results_map_ = enqueueResultsRead(result_floats);
       // Mapped again for the next bundle batch once the kernel has read it.
-      if (last_chunk)
-        planes_map_ = mapBuffer<float>(rt_, planes_.get(), CL_MAP_WRITE_INVALIDATE_REGION,
-                                       planes_.capacity());
+      if (last_chunk) planes_map_ = enqueueWritable(planes_, planes_host_, planes_.capacity());
     });
     const PacketResults results(results_map_, lanes, GR_BUNDLE_RESULT_PLANES);
     counters_.kernel_ms += clock.ms();

@@ -68,6 +68,8 @@ class GridRtIntersector : public Intersector {
   std::string name() const override { return allInterrupt() ? "gridrt-interrupt" : "gridrt"; }
   // The PE kernels' layout this device runs (never Auto).
   PeLayout peLayout() const { return pe_layout_; }
+  // How the batches cross to the device and back.
+  BatchTransfer batchTransfer() const { return transfer_; }
   void intersect(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                  RayDiagnostics* diagnostics) override;
   // Primary rays as camera bundles (camera_bundles.h): PEs receive runs of pixel tiles
@@ -115,6 +117,8 @@ class GridRtIntersector : public Intersector {
   const UniformGrid& grid_;
   PeInterrupt interrupt_;
   PeLayout pe_layout_;
+  BatchTransfer transfer_;
+  bool copying() const { return transfer_ == BatchTransfer::Copy; }
   // Work-items per PE work-group: kPeLocalSize packets, of one or GR_PACKET_LANES items.
   int peLocalSize() const {
     return pe_layout_ == PeLayout::Lanes ? kPeLocalSize * GR_PACKET_LANES : kPeLocalSize;
@@ -161,18 +165,33 @@ class GridRtIntersector : public Intersector {
   PeBins bins_;
   // Phase 1's results, mapped from the device buffers (no copy on a CPU device) for phase
   // 2 and unmapped with the next batch's device commands (an unmap on its own costs a
-  // wait of its own); null when not mapped.
+  // wait of its own); null when not mapped. With BatchTransfer::Copy the three point into
+  // the host arrays below instead, and the unmaps only forget them.
   const float* results_map_ = nullptr;  // results_, either path
   // The bundle planes (planes_, all its capacity), mapped for writing at the end of each
   // bundle batch for the next one; null when not mapped.
   float* planes_map_ = nullptr;
   // The same for the list path's pair packets (entries_): binByPe writes them there.
   float* entries_map_ = nullptr;
+  // BatchTransfer::Copy: the planes, pairs and results in host memory, kept between
+  // batches (grown, never shrunk, so their pages are not faulted in again every batch).
+  std::vector<float> planes_host_, entries_host_, results_host_;
   // Enqueue the unmaps of phase 1's results, of the planes and of the pairs (inside
   // ClRuntime::runAndWait).
   void enqueueUnmaps();
   void enqueuePlanesUnmap();
   void enqueueEntriesUnmap();
+  // Where the host writes a batch's planes or pairs: `buffer` made room for `floats` and
+  // mapped whole for writing, or (Copy) its host array grown to the same room. Inside
+  // ClRuntime::runAndWait.
+  float* enqueueWritable(DeviceBuffer<float>& buffer, std::vector<float>& host, size_t floats);
+  // Copy: enqueues the copy of `floats` floats from `host` to `buffer` at float `offset`
+  // (nothing with Map: the unmap hands the buffer over).
+  void enqueueUpload(DeviceBuffer<float>& buffer, const std::vector<float>& host, size_t offset,
+                     size_t floats);
+  // Phase 1's `floats` result floats for the host: mapped for reading, or (Copy) copied
+  // into results_host_. Inside ClRuntime::runAndWait, after the kernel.
+  const float* enqueueResultsRead(size_t floats);
   std::vector<uint64_t> rays_per_pe_, tests_per_pe_;
   uint64_t max_list_length_ = 0;
   bool list_length_known_ = true;
@@ -185,8 +204,9 @@ class GridRtIntersector : public Intersector {
                         RayDiagnostics* diagnostics);
 
   // Phase 1: runs one work-group per task (bins_.tasks) on the batch's pair packets,
-  // already in entries_ through entries_map_ (with their rays); results_map_ maps their
-  // results (GR_LIST_RESULT_PLANES planes, then the packets' masks).
+  // already in entries_ through entries_map_ (with their rays; copied there first with
+  // BatchTransfer::Copy); results_map_ maps their results (GR_LIST_RESULT_PLANES planes,
+  // then the packets' masks) or points at their copy.
   void runPes(size_t rays, HitMode mode);
   // The end of a batch, for both paths: adds the batch to the PE load and the counters
   // (phase 1's results stay mapped until the next batch's device commands).

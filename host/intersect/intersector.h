@@ -21,10 +21,22 @@ enum class HitMode { Closest, AnyHit };
 // Packets on a CPU device and Lanes on any other. The hits are the same.
 enum class PeLayout { Auto, Packets, Lanes };
 
-// Build-time choices of the device kernels.
+// How a GridRT batch's rays and results cross to the device and back: Map, the device's
+// buffers mapped into host memory whole and written or read there (on a device that works
+// in the host's memory, a CPU's, the buffers themselves: nothing copied); Copy, written
+// into host arrays kept between batches and copied across, only the bytes the batch uses
+// (for a GPU's own memory, where a mapping is a copy of the whole buffer). The hits are
+// the same. Map is the default on every device: on PoCL's CPU device Copy adds its
+// copies to the frame, and on a GPU the two are yet to be measured against each other
+// (tools/gpu_check.sh runs both in turns).
+enum class BatchTransfer { Map, Copy };
+
+// Choices of the device kernels (the test and the layout are build-time) and of how their
+// batches reach them.
 struct KernelOptions {
   bool watertight = false;  // Woop-Benthin-Wald watertight test instead of Moeller-Trumbore
   PeLayout pe_layout = PeLayout::Auto;
+  BatchTransfer transfer = BatchTransfer::Map;
   // The watertight test reads vertices, not edges (GrTriangle::vertex_layout).
   std::string defines() const { return watertight ? "-DGR_WATERTIGHT -DGR_TRIANGLE_VERTICES" : ""; }
 };

@@ -159,6 +159,26 @@ TEST_F(CliOptions, PeLayoutPicksThePeKernelsNotTheImage) {
   EXPECT_NE(bad.err.find("--pe-layout: only with --accel gridrt"), std::string::npos) << bad.err;
 }
 
+// --transfer picks how gridrt's batches cross to the device: mapped by default, copied when
+// asked, with the same image; the statistics name the transfer that ran. Other
+// intersectors refuse it.
+TEST_F(CliOptions, TransferPicksHowBatchesCrossNotTheImage) {
+  EXPECT_EQ(plain_.stats["transfer"], "map");
+  for (const char* transfer : {"map", "copy"}) {
+    const Render r = render(std::string("transfer_") + transfer, {"--transfer", transfer});
+    EXPECT_EQ(r.stats["transfer"], transfer);
+    EXPECT_EQ(differingPixels(plain_.image, r.image), 0u) << transfer;
+    EXPECT_EQ(differingPixels(plain_.depth, r.depth), 0u) << transfer;
+  }
+  const CommandResult bad =
+      runCommand({gridrtBinary(), "--accel", "brute", "--transfer", "copy", "-o", "unused.png"});
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("--transfer: only with --accel gridrt"), std::string::npos) << bad.err;
+  const CommandResult unknown = runCommand({gridrtBinary(), "--transfer", "pinned"});
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.err;
+  EXPECT_NE(unknown.err.find("--transfer"), std::string::npos) << unknown.err;
+}
+
 // --threads N limits the host's loops and PoCL's threads together; the image does not
 // depend on the count (every parallel loop splits its range by count, never by timing).
 TEST_F(CliOptions, ThreadsSetsTheHostAndDeviceThreadCountsNotTheImage) {

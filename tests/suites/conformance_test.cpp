@@ -68,16 +68,18 @@ class Conformance : public ::testing::Test {
       }
       dda.intersect(rays, HitMode::Closest, got, nullptr);
       EXPECT_EQ(test::hitMismatches(want, got, where + " dda"), 0u);
-      // The PE kernels of the layout this device does not pick by itself (PeLayout), with the
-      // interrupt: the same hits on every path.
-      GridRtIntersector other(*runtime_, grid, PeInterrupt::AllRays, otherLayout());
+      // The PE kernels of the layout this device does not pick by itself (PeLayout), their
+      // batches copied across (BatchTransfer), with the interrupt: the same hits on every
+      // path.
+      GridRtIntersector other(*runtime_, grid, PeInterrupt::AllRays, otherChoices());
       std::vector<Intersector*> any_hit_checked = {&gridrt, &dda};
       if (otherLayoutAffordable(grid)) {
         other.intersect(rays, HitMode::Closest, got, nullptr);
-        EXPECT_EQ(test::hitMismatches(want, got, where + " other layout"), 0u);
+        EXPECT_EQ(test::hitMismatches(want, got, where + " other layout and transfer"), 0u);
         if (view) {
           other.intersectPrimary(*view, rays, got, nullptr);
-          EXPECT_EQ(test::hitMismatches(want, got, where + " other layout camera path"), 0u);
+          EXPECT_EQ(
+              test::hitMismatches(want, got, where + " other layout and transfer camera path"), 0u);
         }
         any_hit_checked.push_back(&other);
       }
@@ -92,12 +94,14 @@ class Conformance : public ::testing::Test {
     }
   }
 
-  // The PE kernels' layout this device's default (PeLayout::Auto) does not run.
-  KernelOptions otherLayout() const {
+  // The PE kernels' layout this device's default (PeLayout::Auto) does not pick, and the
+  // batch transfer that is not the default (BatchTransfer::Copy).
+  KernelOptions otherChoices() const {
     KernelOptions options;
     options.pe_layout = peLayoutFor(PeLayout::Auto, runtime_->info()) == PeLayout::Packets
                             ? PeLayout::Lanes
                             : PeLayout::Packets;
+    options.transfer = BatchTransfer::Copy;
     return options;
   }
   // The lane kernels cull nothing: on a grid of a few large PEs (the 69k-triangle bunny in
@@ -191,10 +195,11 @@ class Conformance : public ::testing::Test {
           differ += (got[i].prim >= 0) != (want[i].prim >= 0);
         EXPECT_EQ(differ, 0u) << where << " light bundles any-hit";
         if (!otherLayoutAffordable(grid)) continue;
-        GridRtIntersector other(*runtime_, grid, PeInterrupt::Off, otherLayout());
+        GridRtIntersector other(*runtime_, grid, PeInterrupt::Off, otherChoices());
         other.forceLightBundles();
         other.intersectTowardsPoint(light, rays, HitMode::Closest, got);
-        EXPECT_EQ(test::hitMismatches(want, got, where + " other layout light bundles"), 0u);
+        EXPECT_EQ(
+            test::hitMismatches(want, got, where + " other layout and transfer light bundles"), 0u);
       }
     }
   }

@@ -145,7 +145,12 @@ TEST_F(UnevenScenes, BatchesSplitToFitASmallDeviceLimitGiveTheSameHitsBitForBit)
   const std::vector<GrRay> random = randomRays(b, 20000, 7);
 
   for (PeInterrupt interrupt : {PeInterrupt::CameraRays, PeInterrupt::AllRays}) {
-    GridRtIntersector whole(*runtime_, grid, interrupt), parts(*runtime_, grid, interrupt);
+    // The parts cross to the device both ways (BatchTransfer), one with each interrupt.
+    KernelOptions parts_options;
+    parts_options.transfer =
+        interrupt == PeInterrupt::CameraRays ? BatchTransfer::Map : BatchTransfer::Copy;
+    GridRtIntersector whole(*runtime_, grid, interrupt),
+        parts(*runtime_, grid, interrupt, parts_options);
     parts.setBatchBufferLimit(64 << 10);  // 64 KiB: a few thousand lanes a part
     whole.forceLightBundles();
     parts.forceLightBundles();
