@@ -13,8 +13,8 @@
 #   layouts.csv        both PE kernel layouts (--pe-layout packets, lanes) and both batch
 #                      transfers (--transfer map, copy) in turns, 3 rounds: the default Whitted
 #                      frame and the bunny's 1280x960 camera rays, each the median of 10 frames
-#                      after a first (frame, kernel phase, the kernels' own device time, host
-#                      passes)
+#                      after a first (frame, kernel phase, the kernels' and the transfers'
+#                      own device time, host passes)
 # GPU_CHECK_BENCH=0 leaves the two bench.py runs out (a shorter check).
 # BUILD is a build folder, or what tools/pack_build.sh packed of one; the tests find the
 # source tree and BUILD at the paths they were built with (docs/performance.md, "On other
@@ -74,7 +74,7 @@ done
 # Both PE kernel layouts and both batch transfers in turns on the same frames.
 step "layouts"
 layouts=$out/layouts.csv
-echo "scene,pe_layout,transfer,round,frame_ms,kernel_ms,kernel_device_ms,lists_ms,reduce_ms,shade_ms" >"$layouts"
+echo "scene,pe_layout,transfer,round,frame_ms,kernel_ms,kernel_device_ms,transfer_device_ms,lists_ms,reduce_ms,shade_ms" >"$layouts"
 stats=$(mktemp)
 for round in 1 2 3; do
   for run in packets,map packets,copy lanes,map lanes,copy; do
@@ -90,7 +90,8 @@ for round in 1 2 3; do
       "${PYTHON:-python3}" -c 'import json, sys
 s = json.load(open(sys.argv[1]))
 print(",".join(sys.argv[2:] + ["%.3f" % s[k] for k in ("frame_ms", "kernel_ms",
-      "kernel_device_ms", "lists_ms", "reduce_ms", "shade_ms")]))' "$stats" $scene $layout \
+      "kernel_device_ms", "transfer_device_ms", "lists_ms", "reduce_ms", "shade_ms")]))' \
+        "$stats" $scene $layout \
         $transfer $round >>"$layouts"
     done
   done

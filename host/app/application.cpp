@@ -310,7 +310,8 @@ RenderSettings renderSettings(const Options& o) {
 // Per-frame timings of the timed frames, and the intersector counters of the first.
 struct FrameTimings {
   FramePhaseTimes phases;
-  std::vector<double> kernel_ms, device_ms, lists_ms, walk_ms, binning_ms, bundling_ms, reduce_ms;
+  std::vector<double> kernel_ms, device_ms, transfer_ms, lists_ms, walk_ms, binning_ms, bundling_ms,
+      reduce_ms;
   IntersectCounters first_frame_counters;
 };
 
@@ -334,6 +335,7 @@ FrameTimings renderFrames(const Options& o, Renderer& renderer, Intersector& int
     t.phases.add(frame.times);
     t.kernel_ms.push_back(after.kernel_ms - before.kernel_ms);
     t.device_ms.push_back(after.device_ms - before.device_ms);
+    t.transfer_ms.push_back(after.transfer_ms - before.transfer_ms);
     t.lists_ms.push_back(after.listsMs() - before.listsMs());
     t.walk_ms.push_back(after.walk_ms - before.walk_ms);
     t.binning_ms.push_back(after.binning_ms - before.binning_ms);
@@ -448,6 +450,7 @@ FrameResult renderScene(const Options& o, ClRuntime& runtime, const Scene& scene
   stats["lists_ms"] = median(t.lists_ms);
   stats["kernel_ms"] = median(t.kernel_ms);
   stats["kernel_device_ms"] = median(t.device_ms);
+  stats["transfer_device_ms"] = median(t.transfer_ms);
   stats["reduce_ms"] = median(t.reduce_ms);
   stats["generate_ms"] = frame.times.generate_ms;  // primary rays of the last frame
   const IntersectCounters& c = t.first_frame_counters;

@@ -41,9 +41,9 @@ struct alignas(64) SliceTally {
 // Maps `count` elements of a device buffer into host memory (no copy on a CPU device).
 // Non-blocking: the pointer is usable once the enclosing runAndWait returns.
 template <typename T>
-T* mapBuffer(ClRuntime& rt, cl::Buffer& buffer, cl_map_flags flags, size_t count) {
-  return static_cast<T*>(rt.queue().enqueueMapBuffer(buffer, CL_FALSE, flags, 0,
-                                                     std::max<size_t>(count, 1) * sizeof(T)));
+T* mapBuffer(ClRuntime& rt, cl::Buffer& buffer, cl_map_flags flags, size_t count, cl::Event* done) {
+  return static_cast<T*>(rt.queue().enqueueMapBuffer(
+      buffer, CL_FALSE, flags, 0, std::max<size_t>(count, 1) * sizeof(T), nullptr, done));
 }
 
 int popcount(int bits) { return __builtin_popcount(unsigned(bits)); }
@@ -211,6 +211,7 @@ void GridRtIntersector::runPes(size_t n, HitMode mode) {
     // Mapped again for the next batch's pairs once the kernel has read them.
     entries_map_ = enqueueWritable(entries_, entries_host_, entries_.capacity());
   });
+  countTransfers();
   counters_.device_ms += eventMs(pe_run);
 }
 
@@ -229,17 +230,20 @@ GridRtIntersector::~GridRtIntersector() {
 
 void GridRtIntersector::enqueueUnmaps() {
   if (results_map_ && !copying())
-    rt_.queue().enqueueUnmapMemObject(results_.get(), const_cast<float*>(results_map_));
+    rt_.queue().enqueueUnmapMemObject(results_.get(), const_cast<float*>(results_map_), nullptr,
+                                      nextTransfer());
   results_map_ = nullptr;
 }
 
 void GridRtIntersector::enqueueEntriesUnmap() {
-  if (entries_map_ && !copying()) rt_.queue().enqueueUnmapMemObject(entries_.get(), entries_map_);
+  if (entries_map_ && !copying())
+    rt_.queue().enqueueUnmapMemObject(entries_.get(), entries_map_, nullptr, nextTransfer());
   entries_map_ = nullptr;
 }
 
 void GridRtIntersector::enqueuePlanesUnmap() {
-  if (planes_map_ && !copying()) rt_.queue().enqueueUnmapMemObject(planes_.get(), planes_map_);
+  if (planes_map_ && !copying())
+    rt_.queue().enqueueUnmapMemObject(planes_.get(), planes_map_, nullptr, nextTransfer());
   planes_map_ = nullptr;
 }
 
@@ -247,7 +251,8 @@ float* GridRtIntersector::enqueueWritable(DeviceBuffer<float>& buffer, std::vect
                                           size_t floats) {
   buffer.reserve(rt_, floats);
   if (!copying())
-    return mapBuffer<float>(rt_, buffer.get(), CL_MAP_WRITE_INVALIDATE_REGION, buffer.capacity());
+    return mapBuffer<float>(rt_, buffer.get(), CL_MAP_WRITE_INVALIDATE_REGION, buffer.capacity(),
+                            nextTransfer());
   if (host.size() < buffer.capacity()) host.resize(buffer.capacity());
   return host.data();
 }
@@ -257,15 +262,23 @@ void GridRtIntersector::enqueueUpload(DeviceBuffer<float>& buffer, const std::ve
   if (!copying() || floats == 0) return;
   // Non-blocking: `host` is not written again before runAndWait has waited for the copy.
   rt_.queue().enqueueWriteBuffer(buffer.get(), CL_FALSE, offset * sizeof(float),
-                                 floats * sizeof(float), host.data() + offset);
+                                 floats * sizeof(float), host.data() + offset, nullptr,
+                                 nextTransfer());
+}
+
+cl::Event* GridRtIntersector::nextTransfer() { return &transfers_.emplace_back(); }
+
+void GridRtIntersector::countTransfers() {
+  for (const cl::Event& done : transfers_) counters_.transfer_ms += eventMs(done);
+  transfers_.clear();
 }
 
 const float* GridRtIntersector::enqueueResultsRead(size_t floats) {
-  if (!copying()) return mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, floats);
+  if (!copying()) return mapBuffer<float>(rt_, results_.get(), CL_MAP_READ, floats, nextTransfer());
   if (results_host_.size() < floats) results_host_.resize(std::max(floats, results_.capacity()));
   if (floats)
     rt_.queue().enqueueReadBuffer(results_.get(), CL_FALSE, 0, floats * sizeof(float),
-                                  results_host_.data());
+                                  results_host_.data(), nullptr, nextTransfer());
   return results_host_.data();
 }
 
@@ -310,6 +323,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
       enqueueEntriesUnmap();
       entries_map_ = enqueueWritable(entries_, entries_host_, pair_floats);
     });
+    countTransfers();
   }
   binByPe(lists_, rays.data(), grid_.peCount(), kPeTaskRays, bins_, entries_map_);
   counters_.binning_ms += clock.ms();
@@ -527,6 +541,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       enqueuePlanesUnmap();
       planes = planes_map_ = enqueueWritable(planes_, planes_host_, GR_PLANES * stride);
     });
+    countTransfers();
   }
   int differing = 0, uncovered = 0;
   if (fill) fill->write(planes, stride, differing, uncovered);
@@ -657,6 +672,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
       // Mapped again for the next bundle batch once the kernel has read it.
       if (last_chunk) planes_map_ = enqueueWritable(planes_, planes_host_, planes_.capacity());
     });
+    countTransfers();
     const PacketResults results(results_map_, lanes, GR_BUNDLE_RESULT_PLANES);
     counters_.kernel_ms += clock.ms();
     counters_.device_ms += eventMs(pe_run);

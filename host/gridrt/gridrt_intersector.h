@@ -192,6 +192,11 @@ class GridRtIntersector : public Intersector {
   // Phase 1's `floats` result floats for the host: mapped for reading, or (Copy) copied
   // into results_host_. Inside ClRuntime::runAndWait, after the kernel.
   const float* enqueueResultsRead(size_t floats);
+  // The events of the maps, unmaps and copies enqueued since the last countTransfers, which
+  // adds their device time to the counters (after the runAndWait that ran them).
+  std::vector<cl::Event> transfers_;
+  cl::Event* nextTransfer();
+  void countTransfers();
   std::vector<uint64_t> rays_per_pe_, tests_per_pe_;
   uint64_t max_list_length_ = 0;
   bool list_length_known_ = true;

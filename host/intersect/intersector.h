@@ -57,6 +57,7 @@ struct IntersectCounters {
   double bundling_ms = 0;      // camera and light bundles, with the light's culling sets
   double kernel_ms = 0;        // upload + kernel + download
   double device_ms = 0;        // of which the PE kernels ran on the device (gridrt; profiling)
+  double transfer_ms = 0;      // a batch's maps, unmaps and copies on the device (gridrt)
   double reduce_ms = 0;        // phase-2 reduction on the host
   uint64_t split_batches = 0;  // batches too large for the device, run in parts (gridrt)
 

@@ -169,6 +169,13 @@ TEST_F(CliOptions, TransferPicksHowBatchesCrossNotTheImage) {
     EXPECT_EQ(r.stats["transfer"], transfer);
     EXPECT_EQ(differingPixels(plain_.image, r.image), 0u) << transfer;
     EXPECT_EQ(differingPixels(plain_.depth, r.depth), 0u) << transfer;
+    // The copies are timed on the device, within the kernel phase that waits for them.
+    const double device_ms = r.stats["transfer_device_ms"].get<double>();
+    EXPECT_GE(device_ms, 0.0) << transfer;
+    if (std::string(transfer) == "copy") {
+      EXPECT_GT(device_ms, 0.0);
+      EXPECT_LE(device_ms, r.stats["kernel_ms"].get<double>());
+    }
   }
   const CommandResult bad =
       runCommand({gridrtBinary(), "--accel", "brute", "--transfer", "copy", "-o", "unused.png"});
