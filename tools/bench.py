@@ -73,6 +73,7 @@ def row(label, s, **extra):
          "frame_ms": s["frame_ms"], "lists_ms": s["lists_ms"],
          **{key: s.get(key, 0.0) for key in LIST_PASSES}, "kernel_ms": s["kernel_ms"],
          "kernel_device_ms": s.get("kernel_device_ms", 0.0),
+         "transfer_device_ms": s.get("transfer_device_ms", 0.0),
          "reduce_ms": s["reduce_ms"], "shade_ms": s["shade_ms"],
          "mrays_per_s": s["mrays_per_s"], "tests_per_ray": s["tests_per_ray"],
          "tests_run_per_ray": s["tests_run_per_ray"],
@@ -224,8 +225,9 @@ def run_median(args, frames, runs):
 RAY_KINDS = ("primary", "secondary", "shadow")
 TRACE_KEYS = tuple(f"trace_{kind}_{unit}" for kind in RAY_KINDS for unit in ("ms", "ns_per_ray"))
 # The statistics run_median() takes the median of.
-MEDIAN_KEYS = ("frame_ms", "fps", "lists_ms", "kernel_ms", "kernel_device_ms", "reduce_ms",
-               "shade_ms", "build_ms", "mrays_per_s") + LIST_PASSES + TRACE_KEYS
+MEDIAN_KEYS = ("frame_ms", "fps", "lists_ms", "kernel_ms", "kernel_device_ms",
+               "transfer_device_ms", "reduce_ms", "shade_ms", "build_ms",
+               "mrays_per_s") + LIST_PASSES + TRACE_KEYS
 
 
 def run_peer_whitted(args, frames, packet):
