@@ -62,7 +62,8 @@ namespace {
 
 MemoryEstimate estimateOf(const Options& o) {
   return estimateMemory(o.width, o.height, o.spp, o.crop ? *o.crop : PixelWindow{},
-                        o.crop_output == CropOutput::Full);
+                        o.crop_output == CropOutput::Full,
+                        o.accel == AccelKind::GridRt && o.transfer == BatchTransfer::Copy);
 }
 
 // Checked before the scene is loaded or a device opened, so that an absurd size fails at

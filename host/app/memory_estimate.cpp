@@ -23,7 +23,7 @@ constexpr double kFullOutputBytesPerPixel = 32.0;
 }  // namespace
 
 MemoryEstimate estimateMemory(int width, int height, int spp, const PixelWindow& crop,
-                              bool full_size_output) {
+                              bool full_size_output, bool batches_copied) {
   const PixelWindow film = crop.orWholeImage(width, height);
   const double pixels = double(film.width()) * double(film.height());
   const double frame = pixels * spp, row = double(film.width()) * spp;
@@ -32,6 +32,7 @@ MemoryEstimate estimateMemory(int width, int height, int spp, const PixelWindow&
   m.pass_samples = std::min(frame, std::max(double(kMaxPassRays), row));
   m.device_bytes = m.pass_samples * kBytesPerPassSample;
   m.host_bytes = pixels * kHostBytesPerPixel + m.device_bytes;
+  if (batches_copied) m.host_bytes += m.device_bytes;
   if (!crop.whole() && full_size_output)
     m.host_bytes += double(width) * double(height) * kFullOutputBytesPerPixel;
   return m;

@@ -17,8 +17,10 @@ struct MemoryEstimate {
 
 // A width x height image, or with `crop` its window alone (the film holds the window's
 // pixels); `full_size_output` places a cropped film in a full-size image to write it
-// (--crop-output full), which costs the full image's pixels once more.
+// (--crop-output full), which costs the full image's pixels once more. `batches_copied`
+// (--transfer copy) keeps host arrays as large as one pass's device buffers, which the host
+// then holds once more.
 MemoryEstimate estimateMemory(int width, int height, int spp, const PixelWindow& crop = {},
-                              bool full_size_output = true);
+                              bool full_size_output = true, bool batches_copied = false);
 
 }  // namespace gridrt

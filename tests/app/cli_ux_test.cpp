@@ -13,6 +13,7 @@
 
 #include "crop_window.h"
 #include "errors.h"
+#include "memory_estimate.h"
 #include "options.h"
 #include "progress.h"
 #include "run_command.h"
@@ -196,6 +197,24 @@ TEST(Resources, HugeImageIsRefusedBeforeTheSceneIsLoadedWithOneLine) {
   EXPECT_EQ(r.err.rfind("gridrt: image 65536x65536", 0), 0u) << r.err;
   EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// The need it states counts what --transfer copy keeps on the host beside the device's
+// buffers: one pass's device bytes more than the mapped batches need.
+TEST(Resources, CopiedBatchesAddTheirHostArraysToTheStatedNeed) {
+  auto neededMiB = [](const std::vector<std::string>& extra) {
+    std::vector<std::string> argv{gridrtBinary(), tempPath("no_such_scene.glb"), "--width",
+                                  "65536", "--height", "65536", "-o", tempPath("huge.png")};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    const CommandResult r = runCommand(argv);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    const size_t at = r.err.find("needs about ");
+    EXPECT_NE(at, std::string::npos) << r.err;
+    return at == std::string::npos ? -1.0 : std::stod(r.err.substr(at + 12));
+  };
+  const double mapped = neededMiB({}), copied = neededMiB({"--transfer", "copy"});
+  const double pass_mib = gridrt::estimateMemory(65536, 65536, 1).device_bytes / (1 << 20);
+  EXPECT_NEAR(copied - mapped, pass_mib, 1.0);  // each figure is rounded down to a MiB
 }
 
 TEST(Devices, PlainIndexPicksTheNthDeviceOfTheTable) {
