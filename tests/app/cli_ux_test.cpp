@@ -203,8 +203,9 @@ TEST(Resources, HugeImageIsRefusedBeforeTheSceneIsLoadedWithOneLine) {
 // buffers: one pass's device bytes more than the mapped batches need.
 TEST(Resources, CopiedBatchesAddTheirHostArraysToTheStatedNeed) {
   auto neededMiB = [](const std::vector<std::string>& extra) {
-    std::vector<std::string> argv{gridrtBinary(), tempPath("no_such_scene.glb"), "--width",
-                                  "65536", "--height", "65536", "-o", tempPath("huge.png")};
+    std::vector<std::string> argv{
+        gridrtBinary(), tempPath("no_such_scene.glb"), "--width", "65536", "--height", "65536",
+        "-o",           tempPath("huge.png")};
     argv.insert(argv.end(), extra.begin(), extra.end());
     const CommandResult r = runCommand(argv);
     EXPECT_EQ(r.exit_code, 1) << r.err;
