@@ -8,7 +8,7 @@ their own columns (load_ms, compile_ms, build_ms).
     .venv/bin/python tools/bench.py paper     # the paper's experiment (bunny_res4, 320x240)
     .venv/bin/python tools/bench.py scaling   # triangles and image size
     .venv/bin/python tools/bench.py whitted   # full Whitted frames with shadows (median of 5 processes),
-                                              # and the default frame with Embree tracing beside gridrt
+                                              # and the default and bunny frames with Embree tracing beside gridrt
     .venv/bin/python tools/bench.py targets   # the four speed targets, Embree beside
     .venv/bin/python tools/bench.py single    # one render per process: wall time, peak memory
     .venv/bin/python tools/bench.py adaptive  # uneven scenes: uniform grid, adaptive, Embree, in turns
@@ -256,32 +256,41 @@ def bench_whitted(frames):
     return rows + whitted_peer_rows(frames)
 
 
+# The scenes of the three-way comparison: (label, scene arguments, whether each image is also
+# measured against the exact reference, which brute force makes too slow for the full bunny).
+WHITTED_PEER_SCENES = [("default scene", [], True),
+                       ("bunny", [os.path.join(MODELS, "bunny.glb")], False)]
+
+
 def whitted_peer_rows(frames):
-    """The default scene's frame in the same renderer with gridrt and with Embree tracing,
-    the variants in turns, TARGET_RUNS rounds: by phase, each the median of the rounds."""
+    """Each scene's frame in the same renderer with gridrt and with Embree tracing, the
+    variants in turns, TARGET_RUNS rounds: by phase, each the median of the rounds."""
     if not os.path.exists(EMBREE_PEER):
         print(f"no {EMBREE_PEER} (tools/setup.sh --bench builds it): Embree left out")
         return []
-    args = ["--width", "640", "--height", "480", "--max-depth", "5"]
-    variants = [("gridrt", lambda: run_with_fps(args, frames))]
-    variants += [(name, lambda packet=packet: run_peer_whitted(args, frames, packet))
-                 for name, packet in EMBREE_VARIANTS]
-    results = {name: [] for name, _ in variants}
-    for _ in range(TARGET_RUNS):
-        for name, measure in variants:
-            results[name].append(measure())
-    off = whitted_pixels_off_reference(args)
     rows = []
-    for name, _ in variants:
-        s = medians(results[name], ("frame_ms", "fps") + WHITTED_PHASES)
-        rows.append({"label": f"default scene [{name}]", "variant": name, "peer_comparison": 1,
-                     "frame_ms": s["frame_ms"], "fps": s["fps"],
-                     **{k: s[k] for k in WHITTED_PHASES}, "pixels_off_reference": off[name]})
-        phases = ", ".join(f"{k.replace('trace_', '').replace('_ms', '')} {s[k]:.1f}"
-                           for k in WHITTED_PHASES)
-        print(f"whitted default scene [{name:21s}]: {s['frame_ms']:8.2f} ms = {s['fps']:6.1f} fps; "
-              f"ms: {phases}; {off[name]} pixels off the reference by > {WHITTED_TOLERANCE}",
-              flush=True)
+    for scene, scene_args, check_accuracy in WHITTED_PEER_SCENES:
+        args = scene_args + ["--width", "640", "--height", "480", "--max-depth", "5"]
+        variants = [("gridrt", lambda args=args: run_with_fps(args, frames))]
+        variants += [(name, lambda packet=packet, args=args: run_peer_whitted(args, frames, packet))
+                     for name, packet in EMBREE_VARIANTS]
+        results = {name: [] for name, _ in variants}
+        for _ in range(TARGET_RUNS):
+            for name, measure in variants:
+                results[name].append(measure())
+        off = whitted_pixels_off_reference(args) if check_accuracy else {}
+        for name, _ in variants:
+            s = medians(results[name], ("frame_ms", "fps") + WHITTED_PHASES)
+            rows.append({"label": f"{scene} [{name}]", "scene": scene, "variant": name,
+                         "peer_comparison": 1, "frame_ms": s["frame_ms"], "fps": s["fps"],
+                         **{k: s[k] for k in WHITTED_PHASES},
+                         "pixels_off_reference": off.get(name, "")})
+            phases = ", ".join(f"{k.replace('trace_', '').replace('_ms', '')} {s[k]:.1f}"
+                               for k in WHITTED_PHASES)
+            accuracy = (f"; {off[name]} pixels off the reference by > {WHITTED_TOLERANCE}"
+                        if name in off else "")
+            print(f"whitted {scene} [{name:21s}]: {s['frame_ms']:8.2f} ms = {s['fps']:6.1f} fps; "
+                  f"ms: {phases}{accuracy}", flush=True)
     return rows
 
 
@@ -324,7 +333,10 @@ def chart_whitted(rows, path):
     import matplotlib.pyplot as plt
     peers = [r for r in rows if r.get("peer_comparison")]
     rows = [r for r in rows if not r.get("peer_comparison")]
-    fig, axes = plt.subplots(1, 3 if peers else 2, figsize=(18 if peers else 12, 4.5))
+    # One panel per scene of the three-way comparison (older CSVs name no scene: the default).
+    peer_scenes = list(dict.fromkeys(r.get("scene") or "default scene" for r in peers))
+    panels = 2 + len(peer_scenes)
+    fig, axes = plt.subplots(1, panels, figsize=(6 * panels, 4.5))
     ax, kinds = axes[0], axes[1]
     phases = [*LIST_PASSES, "kernel_ms", "reduce_ms", "shade_ms"]
     bottom = [0.0] * len(rows)
@@ -342,20 +354,22 @@ def chart_whitted(rows, path):
                  [(kind, [r[f"trace_{kind}_ns_per_ray"] for r in rows]) for kind in RAY_KINDS])
     kinds.set(ylabel="ns per ray traced", title="Tracing cost by ray kind")
     kinds.legend(fontsize=8)
-    if peers:
-        # The default frame with each intersector in the same renderer, by phase.
-        ax = axes[2]
-        # The accuracy beside the speed: each variant's pixels off the exact reference.
-        labels = [f"{r['variant']}\n{r['pixels_off_reference']} px off the reference" for r in peers]
-        bottom = [0.0] * len(peers)
+    for ax, scene in zip(axes[2:], peer_scenes):
+        # The frame with each intersector in the same renderer, by phase, and where measured
+        # the accuracy beside the speed: each variant's pixels off the exact reference.
+        group = [r for r in peers if (r.get("scene") or "default scene") == scene]
+        labels = [r["variant"] + (f"\n{r['pixels_off_reference']} px off the reference"
+                                  if r.get("pixels_off_reference") not in (None, "") else "")
+                  for r in group]
+        bottom = [0.0] * len(group)
         for p in WHITTED_PHASES:
-            vals = [r[p] for r in peers]
+            vals = [r[p] for r in group]
             ax.bar(labels, vals, bottom=bottom, label=p.replace("trace_", "trace ").replace("_ms", ""))
             bottom = [b + v for b, v in zip(bottom, vals)]
-        ax.scatter(labels, [r["frame_ms"] for r in peers], color="k", zorder=5, label="frame")
+        ax.scatter(labels, [r["frame_ms"] for r in group], color="k", zorder=5, label="frame")
         ax.axhline(1000.0 / 30.0, color="red", ls="--", label="30 fps")
-        ax.set(ylabel="ms per frame", title="Default scene: the same renderer, gridrt or Embree tracing")
-        ax.set_ylim(0, 1.45 * max(r["frame_ms"] for r in peers))
+        ax.set(ylabel="ms per frame", title=f"{scene}: the same renderer, gridrt or Embree tracing")
+        ax.set_ylim(0, 1.45 * max(max(r["frame_ms"] for r in group), 1000.0 / 30.0))
         ax.tick_params(axis="x", labelsize=8)
         ax.legend(fontsize=7, ncol=3, loc="upper right")
     fig.suptitle(machine_line(), fontsize=8)
