@@ -308,7 +308,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   }
   computeTraversalLists(grid_, rays.data(), n, lists_);
   counters_.walk_ms += clock.ms();
-  if (n > 1 && !pairsFit(lists_.entries.size())) {
+  if (n > 1 && !pairsFit(lists_.entryCount())) {
     ++counters_.split_batches;
     intersectInParts(rays, mode, hits, diagnostics);
     return;
@@ -316,7 +316,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   clock.restart();
   // The pairs go straight into the device buffer, left mapped by the previous batch.
   const size_t pair_floats =
-      maxPairPackets(lists_.entries.size(), grid_.peCount()) * kPairPacketFloats;
+      maxPairPackets(lists_.entryCount(), grid_.peCount()) * kPairPacketFloats;
   if (!entries_map_ || entries_.capacity() < pair_floats) {
     rt_.runAndWait([&] {
       enqueueUnmaps();
@@ -354,8 +354,8 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
       if (diagnostics) {
         diagnostics->list_length[r] = length;
         int ray_tests = 0;
-        for (int s = lists_.begin[r]; s < lists_.begin[r + 1]; ++s)
-          ray_tests += grid_.triangleCountOfPe(lists_.entries[s].pe);
+        const ListEntry* entries = lists_.entriesOf(r);
+        for (int e = 0; e < length; ++e) ray_tests += grid_.triangleCountOfPe(entries[e].pe);
         diagnostics->tests[r] = ray_tests;  // less its skipped pairs, below
       }
     }
@@ -388,7 +388,7 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   });
   const SliceTally sum = SliceTally::sumOf(tallies);
   max_list_length_ = std::max(max_list_length_, sum.longest);
-  finishBatch(bins_.pairs_per_pe, n, sum.tests, sum.tests_run, lists_.entries.size(), sum.skipped);
+  finishBatch(bins_.pairs_per_pe, n, sum.tests, sum.tests_run, lists_.entryCount(), sum.skipped);
   counters_.reduce_ms += clock.ms();
 }
 

@@ -294,7 +294,7 @@ TEST(AdaptiveGrid, BatchListsEqualTheOneRayWalk) {
       entries += one.size();
       bool same = int(one.size()) == lists.lengthOf(r);
       for (int k = 0; same && k < lists.lengthOf(r); ++k) {
-        const ListEntry& e = lists.entries[lists.begin[r] + k];
+        const ListEntry& e = lists.entriesOf(r)[k];
         same = e.pe == one[k].pe && std::memcmp(&e.t_enter, &one[k].t_enter, 4) == 0 &&
                std::memcmp(&e.t_exit, &one[k].t_exit, 4) == 0;
       }

@@ -637,7 +637,9 @@ void expectListsMatchTheWalk(const UniformGrid& grid, const GrRay* rays, size_t 
   ASSERT_EQ(lists.begin.size(), count + 1);
   ASSERT_EQ(lists.begin[0], 0);
   for (size_t r = 0; r < count; ++r) ASSERT_LE(lists.begin[r], lists.begin[r + 1]);
-  ASSERT_EQ(size_t(lists.begin[count]), lists.entries.size());
+  size_t entries = 0;
+  for (size_t c = 0; c * kListChunkRays < count; ++c) entries += lists.chunks[c].size();
+  ASSERT_EQ(size_t(lists.begin[count]), entries);
   for (size_t r = 0; r < count; ++r) {
     const GrRay& ray = rays[r];
     std::vector<ListEntry> want;
@@ -651,12 +653,12 @@ void expectListsMatchTheWalk(const UniformGrid& grid, const GrRay* rays, size_t 
     }
     ASSERT_EQ(lists.lengthOf(r), int(want.size())) << "ray " << r;
     for (size_t k = 0; k < want.size(); ++k) {
-      const ListEntry& e = lists.entries[lists.begin[r] + k];
+      const ListEntry& e = lists.entriesOf(r)[k];
       ASSERT_EQ(e.pe, want[k].pe) << "ray " << r << " entry " << k;
       ASSERT_EQ(std::memcmp(&e.t_enter, &want[k].t_enter, sizeof(float)), 0) << "ray " << r;
       ASSERT_EQ(std::memcmp(&e.t_exit, &want[k].t_exit, sizeof(float)), 0) << "ray " << r;
       if (k > 0) {
-        ASSERT_LE(lists.entries[lists.begin[r] + k - 1].t_exit, e.t_enter);
+        ASSERT_LE(lists.entriesOf(r)[k - 1].t_exit, e.t_enter);
       }
     }
   }
@@ -705,7 +707,7 @@ TEST(TraversalLists, MatchTheDdaWalkFilteredToNonEmptyVoxels) {
       SCOPED_TRACE(std::to_string(threads) + " threads, " + std::to_string(count) + " rays");
       computeTraversalLists(grid, rays.data(), count, lists);  // reuses the scratch
       expectListsMatchTheWalk(grid, rays.data(), count, lists);
-      if (count == rays.size()) total_entries = lists.entries.size();
+      if (count == rays.size()) total_entries = lists.entryCount();
     }
   }
   EXPECT_GT(total_entries, rays.size());  // the rays really pierce PEs
@@ -775,7 +777,7 @@ TEST(TraversalLists, MatchTheDdaWalkForRaysThatTripDdas) {
     computeTraversalLists(grid, rays.data(), count, lists);
     expectListsMatchTheWalk(grid, rays.data(), count, lists);
   }
-  EXPECT_GT(lists.entries.size(), size_t(1000));  // the rays really pierce PEs
+  EXPECT_GT(lists.entryCount(), size_t(1000));  // the rays really pierce PEs
 }
 
 // The packet walk at every width the build has (1, 4, 8, 16 lanes) equals the scalar walk
@@ -791,20 +793,21 @@ TEST(TraversalLists, PacketWalkOfEveryBuiltWidthMatchesTheDdaWalk) {
     if (!ddaPacketWidthIsBuilt(lanes)) continue;
     ++widths;
     SCOPED_TRACE(std::to_string(lanes) + " lanes");
-    TraversalLists lists;
-    lists.begin.assign(1, 0);
-    std::vector<ListEntry> packet(size_t(lanes) * stride);
+    std::vector<int> begin{0};
+    std::vector<ListEntry> entries, packet(size_t(lanes) * stride);
     int found[kDdaPacketMaxLanes];
     for (size_t r = 0; r < rays.size(); r += lanes) {
       const int n = int(std::min<size_t>(lanes, rays.size() - r));
       ddaPacketOfWidth(lanes, g, grid.pe_of_voxel.data(), rays.data() + r, n, packet.data(), stride,
                        found);
       for (int k = 0; k < n; ++k) {
-        lists.entries.insert(lists.entries.end(), packet.begin() + size_t(k) * stride,
-                             packet.begin() + size_t(k) * stride + found[k]);
-        lists.begin.push_back(int(lists.entries.size()));
+        entries.insert(entries.end(), packet.begin() + size_t(k) * stride,
+                       packet.begin() + size_t(k) * stride + found[k]);
+        begin.push_back(int(entries.size()));
       }
     }
+    TraversalLists lists;
+    lists.assign(begin, entries);
     expectListsMatchTheWalk(grid, rays.data(), rays.size(), lists);
   }
   EXPECT_TRUE(ddaPacketWidthIsBuilt(1));

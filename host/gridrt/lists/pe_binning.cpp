@@ -70,7 +70,7 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
   const int parts = pe_count * kOctants;
   bins.thread_counts.resize(threads);
   if (!out) {
-    bins.pairs.assign(maxPairPackets(lists.entries.size(), pe_count) * kPairPacketFloats, 0.0f);
+    bins.pairs.assign(maxPairPackets(lists.entryCount(), pe_count) * kPairPacketFloats, 0.0f);
     out = bins.pairs.data();
   }
   int lanes_total = 0;
@@ -80,8 +80,9 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
     const auto [first, last] = sliceRange(ray_count, t, threads);
     for (size_t r = first; r < last; ++r) {
       // The list's end read once: the counts' stores could alias it (as in the pass below).
-      const int octant = octantOf(rays[r]), end = lists.begin[r + 1];
-      for (int e = lists.begin[r]; e < end; ++e) ++counts[lists.entries[e].pe * kOctants + octant];
+      const int octant = octantOf(rays[r]), length = lists.lengthOf(r);
+      const ListEntry* entries = lists.entriesOf(r);
+      for (int e = 0; e < length; ++e) ++counts[entries[e].pe * kOctants + octant];
     }
   });
   // Exclusive prefix over (part, slice): slice t's pairs of a part follow slice t-1's;
@@ -106,9 +107,10 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
       // load every field again after each store.
       const GrRay ray = rays[r];
       const int octant = octantOf(ray);
-      const int end = lists.begin[r + 1];
-      for (int e = lists.begin[r]; e < end; ++e) {
-        const ListEntry entry = lists.entries[e];
+      const int length = lists.lengthOf(r);
+      const ListEntry* entries = lists.entriesOf(r);
+      for (int e = 0; e < length; ++e) {
+        const ListEntry entry = entries[e];
         writePair(out, counts[entry.pe * kOctants + octant]++, ray, int(r), entry);
       }
     }

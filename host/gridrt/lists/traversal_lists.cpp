@@ -1,7 +1,6 @@
 #include "traversal_lists.h"
 
 #include <algorithm>
-#include <cstring>
 
 #include "adaptive_lists.h"
 #include "dda_packet.h"
@@ -9,30 +8,23 @@
 
 namespace gridrt {
 
-namespace {
-
-// The last step of building lists chunk by chunk (kListChunkRays rays each, on all cores):
-// lists.begin[r + 1] holds ray r's entry count and lists.scratch[c] chunk c's entries;
-// turns the counts into offsets and copies the chunks, in order, into lists.entries.
-void gatherChunkLists(TraversalLists& lists, size_t count, size_t chunks) {
-  for (size_t r = 0; r < count; ++r) lists.begin[r + 1] += lists.begin[r];
-  lists.entries.resize(lists.begin[count]);
-  parallelFor(0LL, (long long)(chunks), [&](long long chunk) {
-    const auto& out = lists.scratch[chunk];
-    if (!out.empty())
-      std::memcpy(&lists.entries[lists.begin[size_t(chunk) * kListChunkRays]], out.data(),
-                  out.size() * sizeof(ListEntry));
-  });
+void TraversalLists::assign(const std::vector<int>& flat_begin,
+                            const std::vector<ListEntry>& flat) {
+  begin = flat_begin;
+  const size_t rays = rayCount(), count = (rays + kListChunkRays - 1) / kListChunkRays;
+  if (chunks.size() < count) chunks.resize(count);
+  for (size_t c = 0; c < count; ++c) {
+    const size_t first = c * kListChunkRays, last = std::min(rays, first + kListChunkRays);
+    chunks[c].assign(flat.begin() + begin[first], flat.begin() + begin[last]);
+  }
 }
-
-}  // namespace
 
 void computeListsOverCells(const GrGridInfo& g, const int* codes, const GrRay* rays, size_t count,
                            TraversalLists& lists, const ExpandCells& expand) {
   // Chunks handed out dynamically (list lengths vary a lot across a batch), each with its
-  // own output, copied out in chunk order.
+  // own output (TraversalLists::chunks).
   const size_t chunks = (count + kListChunkRays - 1) / kListChunkRays;
-  if (lists.scratch.size() < chunks) lists.scratch.resize(chunks);
+  if (lists.chunks.size() < chunks) lists.chunks.resize(chunks);
   lists.begin.resize(count + 1);
   lists.begin[0] = 0;
   // Lane-major room for a packet's cells: a ray visits fewer than nx + ny + nz voxels.
@@ -41,7 +33,7 @@ void computeListsOverCells(const GrGridInfo& g, const int* codes, const GrRay* r
   lists.packet_scratch.resize(threadSlotCount());
   for (auto& s : lists.packet_scratch) s.resize(lanes * size_t(stride));
   parallelForDynamic(0LL, (long long)(chunks), 1LL, [&](long long chunk) {
-    auto& out = lists.scratch[chunk];
+    auto& out = lists.chunks[chunk];
     out.clear();
     const size_t first = size_t(chunk) * kListChunkRays;
     const size_t last = std::min(count, first + kListChunkRays);
@@ -57,7 +49,8 @@ void computeListsOverCells(const GrGridInfo& g, const int* codes, const GrRay* r
       }
     }
   });
-  gatherChunkLists(lists, count, chunks);
+  // The counts made offsets.
+  for (size_t r = 0; r < count; ++r) lists.begin[r + 1] += lists.begin[r];
 }
 
 void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t count,

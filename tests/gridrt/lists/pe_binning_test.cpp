@@ -21,19 +21,21 @@ TEST(PeBinning, EveryPairOnceInATaskOfItsPeWithOneOctantInRayOrder) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   std::uniform_int_distribution<int> pick_pe(0, pe_count - 1), length(0, 4);
-  std::vector<GrRay> rays(1500);
-  TraversalLists lists;
-  lists.begin.push_back(0);
+  std::vector<GrRay> rays(5000);  // more than one chunk of lists (kListChunkRays)
+  std::vector<int> begin{0};
+  std::vector<ListEntry> entries;
   for (GrRay& r : rays) {
     r = GrRay{unit(rng), unit(rng), unit(rng), 0, unit(rng), unit(rng), unit(rng), 1};
     std::set<int> pes;
     for (int k = length(rng); k > 0; --k) pes.insert(pick_pe(rng));
-    for (int pe : pes) lists.entries.push_back(ListEntry{pe, float(pe), float(pe) + 0.5f});
-    lists.begin.push_back(int(lists.entries.size()));
+    for (int pe : pes) entries.push_back(ListEntry{pe, float(pe), float(pe) + 0.5f});
+    begin.push_back(int(entries.size()));
   }
+  TraversalLists lists;
+  lists.assign(begin, entries);
   PeBins bins;
   // A buffer with stale values, as the device buffer has from the batch before.
-  std::vector<float> out(maxPairPackets(lists.entries.size(), pe_count) * kPairPacketFloats, 7.0f);
+  std::vector<float> out(maxPairPackets(entries.size(), pe_count) * kPairPacketFloats, 7.0f);
   binByPe(lists, rays.data(), pe_count, task_rays, bins, out.data());
 
   // Lane k of packet p, plane q.
@@ -47,9 +49,9 @@ TEST(PeBinning, EveryPairOnceInATaskOfItsPeWithOneOctantInRayOrder) {
     return i;
   };
   auto planeInt = [&](int p, int q, int k) { return planeBits(p, q, k) & GR_PAIR_RAY_INDEX; };
-  std::vector<int> seen(lists.entries.size(), 0), pairs(pe_count, 0);
+  std::vector<int> seen(entries.size(), 0), pairs(pe_count, 0);
   std::vector<int> packet_used(bins.packets, 0);
-  ASSERT_LE(bins.packets, maxPairPackets(lists.entries.size(), pe_count));
+  ASSERT_LE(bins.packets, maxPairPackets(entries.size(), pe_count));
   for (const GrPeTask& task : bins.tasks) {
     ASSERT_GE(task.pair_count, 1);
     ASSERT_LE(task.pair_count, task_rays);
@@ -63,10 +65,10 @@ TEST(PeBinning, EveryPairOnceInATaskOfItsPeWithOneOctantInRayOrder) {
       ASSERT_LT(size_t(ray), rays.size());
       // The pair's entry: a list holds each PE at most once.
       int slot = lists.begin[ray];
-      while (slot < lists.begin[ray + 1] && lists.entries[slot].pe != task.pe) ++slot;
+      while (slot < lists.begin[ray + 1] && entries[slot].pe != task.pe) ++slot;
       ASSERT_LT(slot, lists.begin[ray + 1]) << "pair in another PE's task";
       const GrRay& r = rays[ray];
-      const ListEntry& entry = lists.entries[slot];
+      const ListEntry& entry = entries[slot];
       // The interval of the entry within the ray's, each end open where it is the ray's.
       const int bits = planeBits(p, GR_PAIR_RAY, lane);
       EXPECT_EQ(plane(p, GR_PAIR_T_LO, lane), std::max(r.tmin, entry.t_enter));
