@@ -79,7 +79,7 @@ void binByPe(const TraversalLists& lists, const GrRay* rays, int pe_count, int t
     counts.assign(parts, 0);
     const auto [first, last] = sliceRange(ray_count, t, threads);
     for (size_t r = first; r < last; ++r) {
-      // The list's end read once: the counts' stores could alias it (as in the pass below).
+      // The list read once: the counts' stores could alias it (as in the pass below).
       const int octant = octantOf(rays[r]), length = lists.lengthOf(r);
       const ListEntry* entries = lists.entriesOf(r);
       for (int e = 0; e < length; ++e) ++counts[entries[e].pe * kOctants + octant];
