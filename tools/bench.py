@@ -333,10 +333,18 @@ def chart_whitted(rows, path):
     import matplotlib.pyplot as plt
     peers = [r for r in rows if r.get("peer_comparison")]
     rows = [r for r in rows if not r.get("peer_comparison")]
-    # One panel per scene of the three-way comparison (older CSVs name no scene: the default).
+    # One panel per scene of the three-way comparison (older CSVs name no scene: the default),
+    # and one of frame time against pixels off the reference where those were measured.
     peer_scenes = list(dict.fromkeys(r.get("scene") or "default scene" for r in peers))
-    panels = 2 + len(peer_scenes)
-    fig, axes = plt.subplots(1, panels, figsize=(6 * panels, 4.5))
+    judged = [r for r in peers if r.get("pixels_off_reference") not in (None, "")]
+    panels = 2 + len(peer_scenes) + (1 if judged else 0)
+    columns = min(panels, 3)
+    rows_of_panels = (panels + columns - 1) // columns
+    fig, grid = plt.subplots(rows_of_panels, columns, figsize=(6 * columns, 4.5 * rows_of_panels),
+                             squeeze=False)
+    axes = list(grid.flat)
+    for unused in axes[panels:]:
+        unused.axis("off")
     ax, kinds = axes[0], axes[1]
     phases = [*LIST_PASSES, "kernel_ms", "reduce_ms", "shade_ms"]
     bottom = [0.0] * len(rows)
@@ -354,7 +362,21 @@ def chart_whitted(rows, path):
                  [(kind, [r[f"trace_{kind}_ns_per_ray"] for r in rows]) for kind in RAY_KINDS])
     kinds.set(ylabel="ns per ray traced", title="Tracing cost by ray kind")
     kinds.legend(fontsize=8)
-    for ax, scene in zip(axes[2:], peer_scenes):
+    if judged:
+        # Speed against accuracy: each variant's frame and its pixels off the exact reference.
+        ax = axes[2]
+        for r in judged:
+            ax.scatter(r["frame_ms"], float(r["pixels_off_reference"]), s=60, zorder=3)
+            ax.annotate(r["variant"], (r["frame_ms"], float(r["pixels_off_reference"])),
+                        textcoords="offset points", xytext=(6, 4), fontsize=8)
+        ax.axvline(1000.0 / 30.0, color="red", ls="--", label="30 fps")
+        ax.set(xlabel="ms per frame", ylabel=f"pixels off the exact reference by > {WHITTED_TOLERANCE}",
+               title=f"{judged[0].get('scene') or 'default scene'}: speed against accuracy "
+                     f"(of {640 * 480:,} pixels)")
+        ax.set_xlim(0, 1.25 * max(r["frame_ms"] for r in judged))
+        ax.set_ylim(-5, 1.25 * max(float(r["pixels_off_reference"]) for r in judged) + 5)
+        ax.legend(fontsize=7)
+    for ax, scene in zip(axes[2 + (1 if judged else 0):], peer_scenes):
         # The frame with each intersector in the same renderer, by phase, and where measured
         # the accuracy beside the speed: each variant's pixels off the exact reference.
         group = [r for r in peers if (r.get("scene") or "default scene") == scene]
