@@ -24,8 +24,9 @@ struct TraversalLists {
   std::vector<int> begin;  // ray count + 1
   // The entries of rays [c K, (c + 1) K) (K = kListChunkRays) in chunk c, slots from
   // begin[c K] on: each chunk's lists stay where they were made, never copied into one
-  // array (that copy took 0.34 of the 5.2 ms of a default Whitted frame's lists). Kept
-  // between batches (a batch may use fewer), so nothing is allocated per frame.
+  // array (a copy of every batch's entries; docs/history.md, "Traversal lists and DDA
+  // packets"). Kept between batches (a batch may use fewer), so nothing is allocated per
+  // frame.
   std::vector<std::vector<ListEntry>> chunks;
   std::vector<std::vector<ListEntry>> packet_scratch;  // per thread: 16 rays' lists
 
