@@ -91,8 +91,7 @@ for round in 1 2 3; do
 s = json.load(open(sys.argv[1]))
 print(",".join(sys.argv[2:] + ["%.3f" % s[k] for k in ("frame_ms", "kernel_ms",
       "kernel_device_ms", "transfer_device_ms", "lists_ms", "reduce_ms", "shade_ms")]))' \
-        "$stats" $scene $layout \
-        $transfer $round >>"$layouts"
+        "$stats" $scene $layout $transfer $round >>"$layouts"
     done
   done
 done
