@@ -2,10 +2,11 @@
 
 #include <cmath>
 
+#include "whitted_shading.h"
+
 namespace gridrt {
 
 namespace {
-constexpr float kPi = 3.14159265358979f;
 
 // A directional light arriving from `from` (given in the camera's frame: right, up, towards
 // the camera) with an irradiance of pi * exposure: a white Lambert surface facing it then

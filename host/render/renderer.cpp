@@ -18,7 +18,6 @@ namespace gridrt {
 
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 GrRay makeRay(const glm::vec3& o, const glm::vec3& d, float tmax, float tmin = 0.0f) {
@@ -113,6 +112,17 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, Intersector& inters
   shading_triangles_ = makeShadingTriangles(scene, geometric_normals_);
   lights_ = scene.has_lights ? scene.lights : defaultLights(camera);
   for (const Material& m : scene.materials) material_terms_.push_back(surfaceTerms(m));
+  // Plain: nothing of the material varies over a surface, and a hit spawns no ray.
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    const Material& m = scene.materials[i];
+    const SurfaceTerms& t = material_terms_[i];
+    PlainMaterial& p = plain_materials_.emplace_back();
+    p.plain = !surface_textures_.varies(int(i)) && m.alpha_mode != AlphaMode::Blend &&
+              m.transmission == 0.0f && t.transmission == 0.0f && t.mirror == glm::vec3(0.0f);
+    p.diffuse = t.diffuse;
+    p.specular = t.specular;
+    p.emissive = m.emissive;
+  }
   // One pixel's width: at the camera for an orthographic camera, per unit distance else.
   const float rows = float(std::max(1, settings.height));
   if (camera.orthographic)
@@ -609,6 +619,10 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
     out.ray_count = 0;
     out.light_lanes.resize(lights_.size());
     SurfaceLanes lanes;
+    // The plain path (plain_shading.h) needs the highlights of Phong shading.
+    const bool plain_path = settings_.plain_lanes && settings_.shading == ShadingModel::Phong;
+    if (plain_path) out.plain_light_lanes.resize(lights_.size());
+    PlainLanes plain;
     const size_t chunk_begin = size_t(chunk) * kShadeChunkRays;
     const size_t chunk_end = std::min(n, chunk_begin + kShadeChunkRays);
     // The primary generation in its shading order: sample `sample` of the pixel at
@@ -673,9 +687,34 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
         for (size_t l = 0; l < lights_.size(); ++l)
           computeHighlights(lanes, exponent, out.light_lanes[l]);
       }
+      if (plain_path) {
+        for (int k = 0; k < kSurfaceLanes; ++k) {
+          const glm::vec3& w = block_path[k < count ? k : 0].weight;
+          plain.wr[k] = w.x, plain.wg[k] = w.y, plain.wb[k] = w.z;
+          plain.material[k] = scene_.material_of[lanes.tri[k]];
+        }
+        computePlainLanes(lanes, plain_materials_.data(), settings_.ambient, settings_.ray_offset,
+                          plain);
+        for (size_t l = 0; l < lights_.size(); ++l)
+          computePlainLight(plain, plain_materials_.data(), out.light_lanes[l],
+                            out.plain_light_lanes[l]);
+      }
       for (int k = 0; k < count; ++k) {
         const size_t i = block_ray[k];
         const PathRay& path = block_path[k];
+        if (plain_path && plain.plain[k]) {
+          local[i] = glm::vec3(plain.lr[k], plain.lg[k], plain.lb[k]);
+          for (size_t l = 0; l < lights_.size(); ++l) {
+            const PlainLightLanes& c = out.plain_light_lanes[l];
+            if (!c.emit[k]) continue;
+            const LightLanes& light = out.light_lanes[l];
+            const size_t s = nextSlot(out.shadow_rays, out.shadows, out.shadow_count);
+            out.shadow_rays[s] = GrRay{plain.ax[k], plain.ay[k], plain.az[k], plain.offset[k],
+                                       light.lx[k], light.ly[k], light.lz[k], light.distance[k]};
+            out.shadows[s] = ShadowRay{path.pixel, int(l), glm::vec3(c.cr[k], c.cg[k], c.cb[k])};
+          }
+          continue;
+        }
         const GrHit& hit = g.hits[i];
         glm::vec3 d(lanes.dx[k], lanes.dy[k], lanes.dz[k]);
         const int tri = hit.prim;

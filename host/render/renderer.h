@@ -15,6 +15,7 @@
 #include "hit_surfaces.h"
 #include "intersector.h"
 #include "pixel_window.h"
+#include "plain_shading.h"
 #include "sample_coverage.h"
 #include "scene.h"
 #include "see_through_hits.h"
@@ -55,6 +56,9 @@ struct RenderSettings {
   float min_path_weight = 0.0f;
   // Primary rays per pass (kMaxPassRays unless a test wants small passes).
   size_t max_pass_rays = kMaxPassRays;
+  // Hits on plain surfaces shaded 16 at a time (plain_shading.h); off, every hit takes the
+  // one-hit loop (the same bits: tests compare the two).
+  bool plain_lanes = true;
 };
 
 // Rays traced per kind in one frame.
@@ -223,6 +227,7 @@ class Renderer {
   std::vector<ShadingTriangle> shading_triangles_;  // per triangle
   std::vector<Light> lights_;                       // the scene's, or the default light
   std::vector<SurfaceTerms> material_terms_;        // per material
+  std::vector<PlainMaterial> plain_materials_;      // per material (plain_shading.h)
   SurfaceTextures surface_textures_;                // textures and vertex colours at hits
   SeeThroughHits see_through_;                      // rays past alphaMode MASK holes and BLEND
   // Ray cones (surface_textures.h): a camera ray's width at the camera, and the angle a
@@ -240,6 +245,7 @@ class Renderer {
     std::vector<PathRay> paths;  // as many as rays
     size_t ray_count = 0;
     std::vector<LightLanes> light_lanes;  // scratch: each light seen from a block of 16 hits
+    std::vector<PlainLightLanes> plain_light_lanes;  // ... and its share of the plain hits
   };
   // One depth's arrays, kept from frame to frame, so each keeps about the size it had in
   // the last frame: growing a std::vector zero-fills its new part, which one set shared

@@ -12,6 +12,8 @@
 
 namespace gridrt {
 
+constexpr float kPi = 3.14159265358979f;
+
 // How a material splits incoming light, derived from its glTF parameters.
 struct SurfaceTerms {
   glm::vec3 diffuse;     // Lambert albedo: base * ((1 - metallic) * (1 - transmission)
@@ -56,6 +58,7 @@ struct RayOffset {
 // normal by this many ulps of that magnitude, then one more ulp per axis. 16 already
 // passes the re-intersection and shadow-acne tests at scales 1e-4..1e6; 64 is a 4x margin.
 constexpr float kHitPointErrorUlps = 64.0f;
+constexpr float kUlpOfOne = 0x1p-23f;  // float spacing at 1
 
 // std::nextafter(x, +inf) when `up`, else std::nextafter(x, -inf), without the library
 // call for finite x (the shading loop takes three per secondary origin).
@@ -86,7 +89,6 @@ inline float rayOffsetDistance(const glm::vec3& p, const glm::vec3& ray_origin,
   float magnitude = 0.0f;
   for (int a = 0; a < 3; ++a)
     magnitude = std::max({magnitude, std::fabs(p[a]), std::fabs(ray_origin[a])});
-  constexpr float kUlpOfOne = 0x1p-23f;  // float spacing at 1
   return kHitPointErrorUlps * kUlpOfOne * magnitude;
 }
 
