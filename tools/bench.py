@@ -327,6 +327,45 @@ def grouped_bars(ax, groups, series):
     ax.set_xticks(range(len(groups)), groups)
 
 
+# The default scene's frame by phase in the same renderer, gridrt and both Embree modes, as
+# bench.py whitted first measured it on the Zen 4 machine (2026-12-01, commit 3b9437e: the
+# peer rows of that run's whitted.csv): the "before" the chart's last panel sets this run
+# beside.
+WHITTED_BEFORE = os.path.join(ROOT, "bench", "whitted_before.csv")
+
+
+def read_whitted_before():
+    if not os.path.exists(WHITTED_BEFORE):
+        return []
+    with open(WHITTED_BEFORE, newline="") as f:
+        return [{k: (v if k in ("scene", "variant", "date", "commit") else float(v))
+                 for k, v in r.items()} for r in csv.DictReader(f)]
+
+
+def chart_before_after(ax, before, peers):
+    """Each variant's frame by phase, before (WHITTED_BEFORE) and in this run, side by side."""
+    now = {r["variant"]: r for r in peers if (r.get("scene") or "default scene") == before[0]["scene"]}
+    pairs = [(b, now[b["variant"]]) for b in before if b["variant"] in now]
+    labels, stacks, at = [], [], []
+    for k, (b, n) in enumerate(pairs):
+        name = b["variant"].replace("16-ray packets", "packets")
+        labels += [f"{name}\n{b['date']}", f"{name}\nnow"]
+        stacks += [b, n]
+        at += [2.5 * k, 2.5 * k + 1]  # a gap between the variants' pairs
+    bottom = [0.0] * len(stacks)
+    for p in WHITTED_PHASES:
+        vals = [float(r[p]) for r in stacks]
+        ax.bar(at, vals, bottom=bottom, label=p.replace("trace_", "trace ").replace("_ms", ""))
+        bottom = [b + v for b, v in zip(bottom, vals)]
+    ax.scatter(at, [float(r["frame_ms"]) for r in stacks], color="k", zorder=5, label="frame")
+    ax.axhline(1000.0 / 30.0, color="red", ls="--", label="30 fps")
+    ax.set_xticks(at, labels)
+    ax.tick_params(axis="x", labelsize=6)
+    ax.set(ylabel="ms per frame", title=f"{before[0]['scene']}: the frame by phase, before and now")
+    ax.set_ylim(0, 1.3 * max(float(r["frame_ms"]) for r in stacks))
+    ax.legend(fontsize=7, ncol=3, loc="upper right")
+
+
 def chart_whitted(rows, path):
     import matplotlib
     matplotlib.use("Agg")
@@ -334,10 +373,12 @@ def chart_whitted(rows, path):
     peers = [r for r in rows if r.get("peer_comparison")]
     rows = [r for r in rows if not r.get("peer_comparison")]
     # One panel per scene of the three-way comparison (older CSVs name no scene: the default),
-    # and one of frame time against pixels off the reference where those were measured.
+    # one of frame time against pixels off the reference where those were measured, and one of
+    # the frame by phase before (WHITTED_BEFORE) and now.
     peer_scenes = list(dict.fromkeys(r.get("scene") or "default scene" for r in peers))
     judged = [r for r in peers if r.get("pixels_off_reference") not in (None, "")]
-    panels = 2 + len(peer_scenes) + (1 if judged else 0)
+    before = read_whitted_before() if peers else []
+    panels = 2 + len(peer_scenes) + (1 if judged else 0) + (1 if before else 0)
     columns = min(panels, 3)
     rows_of_panels = (panels + columns - 1) // columns
     fig, grid = plt.subplots(rows_of_panels, columns, figsize=(6 * columns, 4.5 * rows_of_panels),
@@ -394,6 +435,8 @@ def chart_whitted(rows, path):
         ax.set_ylim(0, 1.45 * max(max(r["frame_ms"] for r in group), 1000.0 / 30.0))
         ax.tick_params(axis="x", labelsize=8)
         ax.legend(fontsize=7, ncol=3, loc="upper right")
+    if before:
+        chart_before_after(axes[panels - 1], before, peers)
     fig.suptitle(machine_line(), fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
