@@ -342,9 +342,29 @@ def read_whitted_before():
                  for k, v in r.items()} for r in csv.DictReader(f)]
 
 
+def peer_scene(row):
+    """The scene of a three-way comparison row (older CSVs name none: the default scene)."""
+    return row.get("scene") or "default scene"
+
+
+def stack_whitted_phases(ax, at, rows, labels):
+    """Each row's frame by phase (WHITTED_PHASES) as one stacked bar at `at`, its whole frame
+    as a dot, and the 30 fps line."""
+    bottom = [0.0] * len(rows)
+    for p in WHITTED_PHASES:
+        vals = [float(r[p]) for r in rows]
+        ax.bar(at, vals, bottom=bottom, label=p.replace("trace_", "trace ").replace("_ms", ""))
+        bottom = [b + v for b, v in zip(bottom, vals)]
+    ax.scatter(at, [float(r["frame_ms"]) for r in rows], color="k", zorder=5, label="frame")
+    ax.axhline(1000.0 / 30.0, color="red", ls="--", label="30 fps")
+    ax.set_xticks(at, labels)
+    ax.set_ylabel("ms per frame")
+    ax.legend(fontsize=7, ncol=3, loc="upper right")
+
+
 def chart_before_after(ax, before, peers):
     """Each variant's frame by phase, before (WHITTED_BEFORE) and in this run, side by side."""
-    now = {r["variant"]: r for r in peers if (r.get("scene") or "default scene") == before[0]["scene"]}
+    now = {r["variant"]: r for r in peers if peer_scene(r) == before[0]["scene"]}
     pairs = [(b, now[b["variant"]]) for b in before if b["variant"] in now]
     labels, stacks, at = [], [], []
     for k, (b, n) in enumerate(pairs):
@@ -352,18 +372,10 @@ def chart_before_after(ax, before, peers):
         labels += [f"{name}\n{b['date']}", f"{name}\nnow"]
         stacks += [b, n]
         at += [2.5 * k, 2.5 * k + 1]  # a gap between the variants' pairs
-    bottom = [0.0] * len(stacks)
-    for p in WHITTED_PHASES:
-        vals = [float(r[p]) for r in stacks]
-        ax.bar(at, vals, bottom=bottom, label=p.replace("trace_", "trace ").replace("_ms", ""))
-        bottom = [b + v for b, v in zip(bottom, vals)]
-    ax.scatter(at, [float(r["frame_ms"]) for r in stacks], color="k", zorder=5, label="frame")
-    ax.axhline(1000.0 / 30.0, color="red", ls="--", label="30 fps")
-    ax.set_xticks(at, labels)
+    stack_whitted_phases(ax, at, stacks, labels)
     ax.tick_params(axis="x", labelsize=6)
-    ax.set(ylabel="ms per frame", title=f"{before[0]['scene']}: the frame by phase, before and now")
+    ax.set_title(f"{before[0]['scene']}: the frame by phase, before and now")
     ax.set_ylim(0, 1.3 * max(float(r["frame_ms"]) for r in stacks))
-    ax.legend(fontsize=7, ncol=3, loc="upper right")
 
 
 def chart_whitted(rows, path):
@@ -375,7 +387,7 @@ def chart_whitted(rows, path):
     # One panel per scene of the three-way comparison (older CSVs name no scene: the default),
     # one of frame time against pixels off the reference where those were measured, and one of
     # the frame by phase before (WHITTED_BEFORE) and now.
-    peer_scenes = list(dict.fromkeys(r.get("scene") or "default scene" for r in peers))
+    peer_scenes = list(dict.fromkeys(peer_scene(r) for r in peers))
     judged = [r for r in peers if r.get("pixels_off_reference") not in (None, "")]
     before = read_whitted_before() if peers else []
     panels = 2 + len(peer_scenes) + (1 if judged else 0) + (1 if before else 0)
@@ -412,7 +424,7 @@ def chart_whitted(rows, path):
                         textcoords="offset points", xytext=(6, 4), fontsize=8)
         ax.axvline(1000.0 / 30.0, color="red", ls="--", label="30 fps")
         ax.set(xlabel="ms per frame", ylabel=f"pixels off the exact reference by > {WHITTED_TOLERANCE}",
-               title=f"{judged[0].get('scene') or 'default scene'}: speed against accuracy "
+               title=f"{peer_scene(judged[0])}: speed against accuracy "
                      f"(of {640 * 480:,} pixels)")
         ax.set_xlim(0, 1.25 * max(r["frame_ms"] for r in judged))
         ax.set_ylim(-5, 1.25 * max(float(r["pixels_off_reference"]) for r in judged) + 5)
@@ -420,21 +432,14 @@ def chart_whitted(rows, path):
     for ax, scene in zip(axes[2 + (1 if judged else 0):], peer_scenes):
         # The frame with each intersector in the same renderer, by phase, and where measured
         # the accuracy beside the speed: each variant's pixels off the exact reference.
-        group = [r for r in peers if (r.get("scene") or "default scene") == scene]
+        group = [r for r in peers if peer_scene(r) == scene]
         labels = [r["variant"] + (f"\n{r['pixels_off_reference']} px off the reference"
                                   if r.get("pixels_off_reference") not in (None, "") else "")
                   for r in group]
-        bottom = [0.0] * len(group)
-        for p in WHITTED_PHASES:
-            vals = [r[p] for r in group]
-            ax.bar(labels, vals, bottom=bottom, label=p.replace("trace_", "trace ").replace("_ms", ""))
-            bottom = [b + v for b, v in zip(bottom, vals)]
-        ax.scatter(labels, [r["frame_ms"] for r in group], color="k", zorder=5, label="frame")
-        ax.axhline(1000.0 / 30.0, color="red", ls="--", label="30 fps")
-        ax.set(ylabel="ms per frame", title=f"{scene}: the same renderer, gridrt or Embree tracing")
+        stack_whitted_phases(ax, range(len(group)), group, labels)
+        ax.set_title(f"{scene}: the same renderer, gridrt or Embree tracing")
         ax.set_ylim(0, 1.45 * max(max(r["frame_ms"] for r in group), 1000.0 / 30.0))
         ax.tick_params(axis="x", labelsize=8)
-        ax.legend(fontsize=7, ncol=3, loc="upper right")
     if before:
         chart_before_after(axes[panels - 1], before, peers)
     fig.suptitle(machine_line(), fontsize=8)

@@ -3,9 +3,6 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
-#include <limits>
 
 namespace gridrt {
 
@@ -15,17 +12,6 @@ constexpr int L = kSurfaceLanes;
 
 // 1 for a finite x (ints, not bools: a bool lane would make GCC leave the loop scalar).
 int finite(float x) { return std::fabs(x) <= FLT_MAX ? 1 : 0; }
-
-// nextFloat (whitted_shading.h) of a finite x, towards +infinity when `up`.
-float nextFiniteFloat(float x, bool up) {
-  uint32_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  bits = (x > 0.0f) == up ? bits + 1 : bits - 1;
-  float moved;
-  std::memcpy(&moved, &bits, sizeof moved);
-  const float tiny = std::numeric_limits<float>::denorm_min();
-  return x == 0.0f ? (up ? tiny : -tiny) : moved;
-}
 
 // offsetRayOrigin along one axis for a finite sum p + distance * n: with the robust offset
 // one ulp further where n is not zero.

@@ -60,18 +60,23 @@ struct RayOffset {
 constexpr float kHitPointErrorUlps = 64.0f;
 constexpr float kUlpOfOne = 0x1p-23f;  // float spacing at 1
 
-// std::nextafter(x, +inf) when `up`, else std::nextafter(x, -inf), without the library
-// call for finite x (the shading loop takes three per secondary origin).
-inline float nextFloat(float x, bool up) {
-  if (!std::isfinite(x)) return std::nextafter(x, up ? INFINITY : -INFINITY);
-  if (x == 0.0f)
-    return up ? std::numeric_limits<float>::denorm_min()
-              : -std::numeric_limits<float>::denorm_min();
+// std::nextafter(x, +inf) when `up`, else std::nextafter(x, -inf), for a finite x:
+// without branches, so that loops over lanes (plain_shading.cpp) vectorise.
+inline float nextFiniteFloat(float x, bool up) {
   uint32_t bits;
   std::memcpy(&bits, &x, sizeof bits);
   bits = (x > 0.0f) == up ? bits + 1 : bits - 1;  // the magnitude one ulp up or down
-  std::memcpy(&x, &bits, sizeof x);
-  return x;
+  float moved;
+  std::memcpy(&moved, &bits, sizeof moved);
+  const float tiny = std::numeric_limits<float>::denorm_min();
+  return x == 0.0f ? (up ? tiny : -tiny) : moved;
+}
+
+// The same for any x, without the library call for finite x (the shading loop takes three
+// per secondary origin).
+inline float nextFloat(float x, bool up) {
+  if (!std::isfinite(x)) return std::nextafter(x, up ? INFINITY : -INFINITY);
+  return nextFiniteFloat(x, up);
 }
 
 // How far a secondary ray's origin is moved off the surface of a hit point p found by a

@@ -6,18 +6,18 @@
 
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <glm/glm.hpp>
 #include <random>
 #include <vector>
 
+#include "test_support.h"
 #include "whitted_shading.h"
 
 namespace {
 
 using namespace gridrt;
 
-bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using test::sameBits;
 
 // The one-hit surface: barycentrics of p in the triangle, interpolated normal, both
 // normals turned towards the ray.

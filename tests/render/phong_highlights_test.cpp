@@ -8,14 +8,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <random>
+
+#include "test_support.h"
 
 namespace {
 
 using namespace gridrt;
 
-bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using test::sameBits;
 
 // The largest relative error of phongHighlight against pow in double over rv and
 // exponents spread log-uniformly across (0, 1] and [1, 10000], where the exact power is

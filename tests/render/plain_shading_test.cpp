@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -15,6 +14,7 @@
 #include "default_scene_fixture.h"
 #include "gridrt_intersector.h"
 #include "renderer.h"
+#include "test_support.h"
 #include "uniform_grid.h"
 
 namespace gridrt {
@@ -22,7 +22,7 @@ namespace {
 
 constexpr int L = kSurfaceLanes;
 
-bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using test::sameBits;
 
 // Material 0 plain, 1 not (a mirror, say), 2 plain and emissive.
 std::vector<PlainMaterial> materials() {

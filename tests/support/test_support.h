@@ -1,5 +1,6 @@
 // Helpers the tests have in common: paths of the source tree, the model scenes and the binary.
 #pragma once
+#include <cstring>
 #include <functional>
 #include <glm/glm.hpp>
 #include <string>
@@ -14,6 +15,9 @@ std::string modelScene(const std::string& name);      // <repo>/scenes/models/na
 std::string gridrtBinary();                           // build/gridrt
 std::string tempPath(const std::string& name);        // a fresh path under a per-test temp dir
 bool fileExists(const std::string& path);
+
+// Whether two floats are the same bits (so -0 differs from +0, and a NaN equals itself).
+inline bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // An empty directory of its own (under the per-process temp dir), so a test's listings
 // see only that test's files; and the sorted names in a directory.

@@ -38,8 +38,8 @@ struct TraversalLists {
     const size_t chunk = ray / kListChunkRays;
     return chunks[chunk].data() + (begin[ray] - begin[chunk * kListChunkRays]);
   }
-  // Lists given as one array: ray r's entries at flat[begin[r] .. begin[r + 1]).
-  void assign(const std::vector<int>& begin, const std::vector<ListEntry>& flat);
+  // Lists given as one array: ray r's entries at flat[flat_begin[r] .. flat_begin[r + 1]).
+  void assign(const std::vector<int>& flat_begin, const std::vector<ListEntry>& flat);
 };
 
 // Appends to `out` a ray's entries made from `cells`, its `count` cells of a grid walk.
