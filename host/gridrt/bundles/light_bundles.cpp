@@ -4,41 +4,18 @@
 #include <cmath>
 #include <limits>
 
+#include "light_ray_scan.h"
 #include "parallel_loops.h"
 
 namespace gridrt {
 
 namespace {
 
-// The two axes spanning the faces of cube axis a.
-constexpr int kOtherAxes[3][2] = {{1, 2}, {2, 0}, {0, 1}};
-
-// The face of direction w (from the light), 2 * axis + (w[axis] < 0), and the point
-// (w[b], w[c]) / |w[axis]| in [-1, 1]^2 where it meets that face; false for w = 0.
-bool onFace(const glm::vec3& w, int& face, float& u, float& v) {
-  const glm::vec3 m = glm::abs(w);
-  const int a = m.x >= m.y && m.x >= m.z ? 0 : (m.y >= m.z ? 1 : 2);
-  if (!(m[a] > 0.0f)) return false;
-  face = 2 * a + (w[a] < 0.0f);
-  u = w[kOtherAxes[a][0]] / m[a];
-  v = w[kOtherAxes[a][1]] / m[a];
-  return true;
-}
-
 // How far coordinate x lies from the light's coordinate `light` along the axis of cube face
 // `face`, outwards: a difference of floats taken in double, for a ray's origin and for a
 // box's nearest face alike, so that the two compare as the points do.
 double depthOnFace(float x, float light, int face) {
   return face % 2 ? double(light) - double(x) : double(x) - double(light);
-}
-
-// The squared distance of the float end o + tmax * d of `ray` from `light`
-// (glm::length's square).
-float endToLightSquared(const GrRay& ray, const glm::vec3& light) {
-  const glm::vec3 end =
-      glm::vec3(ray.ox, ray.oy, ray.oz) + ray.tmax * glm::vec3(ray.dx, ray.dy, ray.dz);
-  const glm::vec3 off = end - light;
-  return glm::dot(off, off);
 }
 
 // The bound kLightEndRoundingEpsilons puts on the rounding of an end within `reach`.
@@ -120,40 +97,21 @@ LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, 
   std::vector<float> slice_miss(slices, 0.0f), slice_reach(slices, 0.0f),
       slice_length(slices, INFINITY);
   parallelSlices(slices, [&](int me, int n) {
-    // Accumulated in locals and stored once: the slices' slots share cache lines. The
-    // lengths are kept squared and their roots taken once at the end (sqrt is monotone,
-    // so the root of the largest square is the largest root): two roots a ray were the
-    // pass's longest stall.
-    std::array<FaceWindow, 6> windows{};
-    float miss_squared = 0.0f, reach = 0.0f, min_length_squared = INFINITY;
+    // Accumulated in the slice's own scan and stored once: the slices' slots share cache
+    // lines. The lengths are kept squared and their roots taken once at the end (sqrt is
+    // monotone, so the root of the largest square is the largest root): two roots a ray
+    // were the pass's longest stall.
+    LightRayScan scan;
     const auto [r0, r1] = sliceRange(count, me, n);
-    for (size_t r = r0; r < r1; ++r) {
-      const GrRay& ray = rays[r];
-      const glm::vec3 d(ray.dx, ray.dy, ray.dz);
-      const float off = endToLightSquared(ray, light);
-      miss_squared = std::max(miss_squared, std::isfinite(off) ? off : INFINITY);
-      const float ray_reach =
-          std::fabs(ray.ox) + std::fabs(ray.oy) + std::fabs(ray.oz) + std::fabs(ray.tmax);
-      reach = std::max(reach, std::isfinite(ray_reach) ? ray_reach : INFINITY);
-      const float length_squared = glm::dot(d, d);
-      min_length_squared =
-          std::min(min_length_squared, length_squared == length_squared ? length_squared : 0.0f);
-      int face = 0;
-      float u = 0.0f, v = 0.0f;
-      if (!onFace(-d, face, u, v)) face = 0;  // no direction: any cell will do
-      scratch.face_of[r] = face;
-      scratch.uv[2 * r] = u;
-      scratch.uv[2 * r + 1] = v;
-      scratch.depth[r] = originDepth(ray, light, face);
-      windows[face].add(u, v);
-    }
-    thread_windows[me] = windows;
+    scanLightRays(rays, r0, r1, light, scratch.face_of.data(), scratch.uv.data(),
+                  scratch.depth.data(), scan);
+    thread_windows[me] = scan.windows;
     // At least every ray's missOfLight: the root and the rounding term are each the
     // largest of the slice's (the L1 reach bounds missOfLight's |o|_inf + tmax), and a
     // rounded sum grows with its terms.
-    slice_miss[me] = std::sqrt(miss_squared) + endRoundingOf(reach);
-    slice_reach[me] = reach;
-    slice_length[me] = std::sqrt(min_length_squared);
+    slice_miss[me] = std::sqrt(scan.miss_squared) + endRoundingOf(scan.reach);
+    slice_reach[me] = scan.reach;
+    slice_length[me] = std::sqrt(scan.min_length_squared);
   });
   LightRayBounds bounds;
   const float miss = bounds.miss = *std::max_element(slice_miss.begin(), slice_miss.end());

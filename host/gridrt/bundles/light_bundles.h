@@ -42,6 +42,10 @@ constexpr float kLightEndRoundingEpsilons = 4.0f;
 // each within ~2e-7 relative of exact, and must not be split by a cell boundary.
 constexpr float kLightFaceMargin = 1e-6f;
 
+// The two axes spanning the faces of cube axis a: face 2a + s has coordinates
+// (w[kOtherAxes[a][0]], w[kOtherAxes[a][1]]) / |w[a]| for a direction w from the light.
+constexpr int kOtherAxes[3][2] = {{1, 2}, {2, 0}, {0, 1}};
+
 // Rays a cube cell should hold on average.
 constexpr float kLightRaysPerCell = 8.0f;
 
