@@ -130,9 +130,10 @@ LightRayBounds bundleLightRays(const UniformGrid& grid, const glm::vec3& light, 
     cells += size_t(w.res) * w.res;
   }
   scratch.cell_of.resize(count);
-  parallelFor(0LL, (long long)(count), [&](long long r) {
-    scratch.cell_of[r] =
-        int(faces[scratch.face_of[r]].cellOf(scratch.uv[2 * r], scratch.uv[2 * r + 1]));
+  parallelSlices(slices, [&](int me, int n) {
+    const auto [r0, r1] = sliceRange(count, me, n);
+    cellsOfLightRays(faces, scratch.face_of.data(), scratch.uv.data(), r0, r1,
+                     scratch.cell_of.data());
   });
 
   // Bundle order: counting sort by cell, padded to whole packets. Stable and parallel:

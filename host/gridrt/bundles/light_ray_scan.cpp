@@ -177,4 +177,42 @@ void scanLightRays(const GrRay* rays, size_t first, size_t last, const glm::vec3
     scanLightRay(rays[r], light, face_of[r], uv[2 * r], uv[2 * r + 1], depth[r], scan);
 }
 
+void cellsOfLightRays(const std::array<FaceWindow, 6>& faces, const int* face_of, const float* uv,
+                      size_t first, size_t last, int* cell_of) {
+  const Df df;
+  const hn::RebindToSigned<Df> di;
+  const size_t N = hn::Lanes(df);
+  size_t r = first;
+  for (; r + N <= last; r += N) {
+    const auto face = hn::LoadU(di, face_of + r);
+    Vf u, v;
+    hn::LoadInterleaved2(df, uv + 2 * r, u, v);
+    // Each lane's face's values, by selects (six faces need not fit a table of lanes).
+    auto ofFace = [&](auto d, auto value) {
+      auto x = hn::Set(d, value(faces[0]));
+      for (int f = 1; f < 6; ++f)
+        x = hn::IfThenElse(hn::RebindMask(d, hn::Eq(face, hn::Set(di, f))),
+                           hn::Set(d, value(faces[f])), x);
+      return x;
+    };
+    const Vf u0 = ofFace(df, [](const FaceWindow& w) { return w.u0; });
+    const Vf v0 = ofFace(df, [](const FaceWindow& w) { return w.v0; });
+    const Vf su = ofFace(df, [](const FaceWindow& w) { return w.su; });
+    const Vf sv = ofFace(df, [](const FaceWindow& w) { return w.sv; });
+    const Vf last_cell = ofFace(df, [](const FaceWindow& w) { return float(w.res - 1); });
+    const auto res = ofFace(di, [](const FaceWindow& w) { return w.res; });
+    const auto first_cell = ofFace(di, [](const FaceWindow& w) { return int(w.first_cell); });
+    // FaceWindow::cellOf's index: int(std::max(0, std::min(res - 1, x))).
+    auto index = [&](Vf x) {
+      const Vf below = hn::IfThenElse(hn::Lt(x, last_cell), x, last_cell);
+      const Vf zero = hn::Zero(df);
+      return hn::ConvertTo(di, hn::IfThenElse(hn::Lt(zero, below), below, zero));
+    };
+    const auto column = index(hn::Mul(hn::Sub(u, u0), su));
+    const auto row = index(hn::Mul(hn::Sub(v, v0), sv));
+    hn::StoreU(hn::Add(first_cell, hn::Add(hn::Mul(row, res), column)), di, cell_of + r);
+  }
+  for (; r < last; ++r) cell_of[r] = int(faces[face_of[r]].cellOf(uv[2 * r], uv[2 * r + 1]));
+}
+
 }  // namespace gridrt

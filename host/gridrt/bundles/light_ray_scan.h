@@ -1,4 +1,5 @@
-// The light bundles' first pass over a batch of rays towards a light (light_bundles.h):
+// The light bundles' passes over each ray of a batch towards a light (light_bundles.h).
+// The first:
 // each ray's cube face, its point on that face and its origin's depth, the faces' windows,
 // and what light culling needs of the batch. scanLightRay is the definition, one ray at a
 // time; scanLightRays makes the same values a vector of rays at a time (Highway, the
@@ -39,5 +40,11 @@ void scanLightRay(const GrRay& ray, const glm::vec3& light, int& face, float& u,
 // depth[r] of each ray r.
 void scanLightRays(const GrRay* rays, size_t first, size_t last, const glm::vec3& light,
                    int* face_of, float* uv, double* depth, LightRayScan& scan);
+
+// The second pass, once the faces' cells are laid out: cell_of[r] =
+// faces[face_of[r]].cellOf(uv[2 r], uv[2 r + 1]) for rays [first, last), a vector of rays
+// at a time, bit for bit.
+void cellsOfLightRays(const std::array<FaceWindow, 6>& faces, const int* face_of, const float* uv,
+                      size_t first, size_t last, int* cell_of);
 
 }  // namespace gridrt

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <set>
 #include <vector>
 
 namespace gridrt {
@@ -116,6 +117,41 @@ TEST(LightRayScan, LanesGiveTheOneRayValuesBitForBit) {
   expectSamePasses(rays, light, 3, rays.size() - 5);
   expectSamePasses(rays, light, 17, 17);
   expectSamePasses(rays, light, 40, 47);
+}
+
+// The cells of the second pass are FaceWindow::cellOf's, for the faces laid out from the
+// first pass's windows, and for points off the windows, huge or not a number (clamped).
+TEST(LightRayScan, LanesGiveTheCellsOfCellOf) {
+  const glm::vec3 light(0.25f, 3.0f, -1.5f);
+  const std::vector<GrRay> rays = raysAround(light, 6000);
+  Pass pass(rays.size());
+  scanLightRays(rays.data(), 0, rays.size(), light, pass.face.data(), pass.uv.data(),
+                pass.depth.data(), pass.scan);
+  std::array<FaceWindow, 6> faces = pass.scan.windows;
+  // Windows narrower than the rays' (as a window fitted to fewer rays), so that some
+  // points fall outside them; the cells counted from row 0 of face 0 on.
+  int rows = 0;
+  size_t cells = 0;
+  for (FaceWindow& w : faces) {
+    w.umin *= 0.5f, w.umax *= 0.5f;
+    w.layout(rows, cells);
+    rows += w.res;
+    cells += size_t(w.res) * w.res;
+  }
+  ASSERT_GT(faces[3].res, 4);
+  std::vector<float> uv = pass.uv;
+  const float odd[] = {std::nanf(""), 1e30f, -1e30f, std::numeric_limits<float>::infinity(), -0.0f};
+  for (size_t k = 0; k < 40; ++k) uv[2 * (k * 97) + (k % 2)] = odd[k % 5];
+  std::vector<int> lanes(rays.size(), -1);
+  cellsOfLightRays(faces, pass.face.data(), uv.data(), 0, rays.size(), lanes.data());
+  size_t differ = 0;
+  for (size_t r = 0; r < rays.size(); ++r)
+    differ += lanes[r] != int(faces[pass.face[r]].cellOf(uv[2 * r], uv[2 * r + 1]));
+  EXPECT_EQ(differ, 0u);
+  std::set<int> used(lanes.begin(), lanes.end());
+  EXPECT_GT(used.size(), 100u);
+  EXPECT_GE(*used.begin(), 0);
+  EXPECT_LT(size_t(*used.rbegin()), cells);
 }
 
 // The bounds of rays that all end at the light: finite; and the infinite miss of a ray
