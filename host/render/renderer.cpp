@@ -112,16 +112,22 @@ Renderer::Renderer(const Scene& scene, const Camera& camera, Intersector& inters
   shading_triangles_ = makeShadingTriangles(scene, geometric_normals_);
   lights_ = scene.has_lights ? scene.lights : defaultLights(camera);
   for (const Material& m : scene.materials) material_terms_.push_back(surfaceTerms(m));
-  // Plain: nothing of the material varies over a surface, and a hit spawns no ray.
+  // Plain: nothing of the material varies over a surface, nor is light absorbed inside it
+  // (a hit's weight is its path's).
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     const Material& m = scene.materials[i];
     const SurfaceTerms& t = material_terms_[i];
     PlainMaterial& p = plain_materials_.emplace_back();
     p.plain = !surface_textures_.varies(int(i)) && m.alpha_mode != AlphaMode::Blend &&
-              m.transmission == 0.0f && t.transmission == 0.0f && t.mirror == glm::vec3(0.0f);
+              !(m.transmission > 0.0f && m.attenuation_distance > 0.0f);
+    p.spawning = t.transmission > 0.0f || t.mirror != glm::vec3(0.0f);
     p.diffuse = t.diffuse;
     p.specular = t.specular;
     p.emissive = m.emissive;
+    p.mirror = t.mirror;
+    p.base_color = m.base_color;
+    p.transmission = t.transmission;
+    p.ior = m.ior;
   }
   // One pixel's width: at the camera for an orthographic camera, per unit distance else.
   const float rows = float(std::max(1, settings.height));
@@ -623,6 +629,7 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
     const bool plain_path = settings_.plain_lanes && settings_.shading == ShadingModel::Phong;
     if (plain_path) out.plain_light_lanes.resize(lights_.size());
     PlainLanes plain;
+    SpawnLanes spawned;
     const size_t chunk_begin = size_t(chunk) * kShadeChunkRays;
     const size_t chunk_end = std::min(n, chunk_begin + kShadeChunkRays);
     // The primary generation in its shading order: sample `sample` of the pixel at
@@ -687,14 +694,20 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
         for (size_t l = 0; l < lights_.size(); ++l)
           computeHighlights(lanes, exponent, out.light_lanes[l]);
       }
+      bool spawning = false;  // a plain lane of the block mirrors or transmits
       if (plain_path) {
         for (int k = 0; k < kSurfaceLanes; ++k) {
           const glm::vec3& w = block_path[k < count ? k : 0].weight;
           plain.wr[k] = w.x, plain.wg[k] = w.y, plain.wb[k] = w.z;
           plain.material[k] = scene_.material_of[lanes.tri[k]];
+          spawning |= plain_materials_[plain.material[k]].spawning != 0;
         }
         computePlainLanes(lanes, plain_materials_.data(), settings_.ambient, settings_.ray_offset,
                           plain);
+        spawning &= spawn;
+        if (spawning)
+          computeSpawnLanes(lanes, plain_materials_.data(), settings_.ray_offset,
+                            settings_.min_path_weight, plain, spawned);
         for (size_t l = 0; l < lights_.size(); ++l)
           computePlainLight(plain, plain_materials_.data(), out.light_lanes[l],
                             out.plain_light_lanes[l]);
@@ -712,6 +725,24 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
             out.shadow_rays[s] = GrRay{plain.ax[k], plain.ay[k], plain.az[k], plain.offset[k],
                                        light.lx[k], light.ly[k], light.lz[k], light.distance[k]};
             out.shadows[s] = ShadowRay{path.pixel, int(l), glm::vec3(c.cr[k], c.cg[k], c.cb[k])};
+          }
+          if (!spawning) continue;
+          const float cone = coneWidth(path.cone, lanes.t[k]);
+          if (spawned.refract[k]) {
+            const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
+            out.rays[s] = GrRay{spawned.rox[k], spawned.roy[k], spawned.roz[k], 0.0f,
+                                spawned.rdx[k], spawned.rdy[k], spawned.rdz[k], kInf};
+            out.paths[s] =
+                PathRay{path.pixel, glm::vec3(spawned.rwr[k], spawned.rwg[k], spawned.rwb[k]),
+                        RayKind::Refraction, cone};
+          }
+          if (spawned.reflect[k]) {
+            const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
+            out.rays[s] = GrRay{plain.ax[k],    plain.ay[k],    plain.az[k],    0.0f,
+                                spawned.fdx[k], spawned.fdy[k], spawned.fdz[k], kInf};
+            out.paths[s] =
+                PathRay{path.pixel, glm::vec3(spawned.fwr[k], spawned.fwg[k], spawned.fwb[k]),
+                        RayKind::Reflection, cone};
           }
           continue;
         }

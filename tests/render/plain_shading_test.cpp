@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -137,6 +138,110 @@ TEST(PlainShading, LightContributionsEqualThePhongTerm) {
   }
 }
 
+// The spawned rays of the one-hit loop, from the one-hit functions (fresnelDielectric,
+// refractDirection, offsetRayOrigin) and its own expressions.
+struct OneHitSpawn {
+  bool refract = false, reflect = false;
+  glm::vec3 refract_origin, refract_dir, refract_weight, reflect_dir, reflect_weight;
+};
+OneHitSpawn oneHitSpawn(const SurfaceLanes& s, const PlainLanes& p, const PlainMaterial& m,
+                        const RayOffset& offset, float min_path_weight, int k) {
+  auto worth = [&](const glm::vec3& w) { return std::max({w.x, w.y, w.z}) >= min_path_weight; };
+  const glm::vec3 d(s.dx[k], s.dy[k], s.dz[k]), n(s.nx[k], s.ny[k], s.nz[k]);
+  const glm::vec3 ng(s.gx[k], s.gy[k], s.gz[k]), point(s.px[k], s.py[k], s.pz[k]);
+  const glm::vec3 weight(p.wr[k], p.wg[k], p.wb[k]);
+  OneHitSpawn o;
+  glm::vec3 reflect_weight = m.mirror;
+  if (m.transmission > 0.0f) {
+    const float eta = s.backface[k] ? m.ior : 1.0f / m.ior;
+    float f = fresnelDielectric(-glm::dot(d, n), eta);
+    o.refract_weight = weight * m.transmission * (1.0f - f) * m.base_color;
+    if (f < 1.0f && refractDirection(d, n, eta, o.refract_dir) &&
+        glm::dot(o.refract_dir, ng) < 0.0f) {
+      o.refract = worth(o.refract_weight);
+      o.refract_origin = offsetRayOrigin(point, -ng, p.offset[k], offset);
+    } else {
+      f = 1.0f;
+    }
+    reflect_weight += glm::vec3(m.transmission * f);
+  }
+  o.reflect_weight = weight * reflect_weight;
+  o.reflect = glm::dot(reflect_weight, reflect_weight) > 0.0f && worth(o.reflect_weight);
+  o.reflect_dir = d - 2.0f * glm::dot(d, n) * n;
+  if (glm::dot(o.reflect_dir, ng) <= 0.0f) o.reflect_dir = d - 2.0f * glm::dot(d, ng) * ng;
+  return o;
+}
+
+bool sameVector(const glm::vec3& a, float x, float y, float z) {
+  return sameBits(a.x, x) && sameBits(a.y, y) && sameBits(a.z, z);
+}
+
+// Glass of two densities, a mirror, and glass with a mirror's share; rays from both sides,
+// shading normals that face away from the ray now and then (interpolated normals do, at a
+// silhouette), geometric normals off the shading ones, weights exactly at the floor.
+TEST(PlainShading, SpawnLanesEqualTheOneHitFunctions) {
+  std::vector<PlainMaterial> m(4);
+  for (PlainMaterial& x : m) x.plain = 1, x.spawning = 1, x.base_color = glm::vec3(1.0f);
+  m[0].transmission = 1.0f;
+  m[1].transmission = 1.0f, m[1].ior = 2.4f, m[1].base_color = glm::vec3(0.9f, 0.6f, 0.3f);
+  m[2].mirror = glm::vec3(0.95f, 0.9f, 0.85f);
+  m[3].transmission = 0.5f, m[3].mirror = glm::vec3(0.25f), m[3].ior = 1.33f;
+  const float floor = 0.25f;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  size_t refracted = 0, reflected = 0, inside = 0, away = 0, at_floor = 0;
+  for (int round = 0; round < 200; ++round) {
+    SurfaceLanes s;
+    PlainLanes p;
+    fill(s, p, rng);
+    for (int k = 0; k < L; ++k) {
+      const glm::vec3 d = glm::normalize(glm::vec3(unit(rng), unit(rng), unit(rng)));
+      glm::vec3 n = glm::normalize(glm::vec3(unit(rng), unit(rng), unit(rng)));
+      if (glm::dot(n, d) > 0.0f && k % 7 != 0) n = -n;  // facing the ray, but now and then
+      away += glm::dot(n, d) > 0.0f;
+      const glm::vec3 ng = glm::normalize(n + 0.2f * glm::vec3(unit(rng), unit(rng), unit(rng)));
+      s.dx[k] = d.x, s.dy[k] = d.y, s.dz[k] = d.z;
+      s.nx[k] = n.x, s.ny[k] = n.y, s.nz[k] = n.z;
+      s.gx[k] = ng.x, s.gy[k] = ng.y, s.gz[k] = ng.z;
+      s.backface[k] = k % 2;
+      inside += k % 2;
+      p.material[k] = (round + k) % 4;
+      if (k % 5 == 0) p.wr[k] = floor / 0.95f, p.wg[k] = p.wb[k] = 0.0f;  // at the floor
+    }
+    for (const bool robust : {true, false}) {
+      RayOffset offset;
+      offset.robust = robust;
+      computePlainLanes(s, m.data(), 0.05f, offset, p);
+      SpawnLanes out;
+      computeSpawnLanes(s, m.data(), offset, floor, p, out);
+      for (int k = 0; k < L; ++k) {
+        ASSERT_TRUE(p.plain[k]);
+        const OneHitSpawn want = oneHitSpawn(s, p, m[p.material[k]], offset, floor, k);
+        EXPECT_EQ(bool(out.refract[k]), want.refract) << "lane " << k;
+        EXPECT_EQ(bool(out.reflect[k]), want.reflect) << "lane " << k;
+        if (want.refract) {
+          ++refracted;
+          EXPECT_TRUE(sameVector(want.refract_origin, out.rox[k], out.roy[k], out.roz[k]));
+          EXPECT_TRUE(sameVector(want.refract_dir, out.rdx[k], out.rdy[k], out.rdz[k]));
+          EXPECT_TRUE(sameVector(want.refract_weight, out.rwr[k], out.rwg[k], out.rwb[k]));
+        }
+        if (want.reflect) {
+          ++reflected;
+          at_floor += std::max({want.reflect_weight.x, want.reflect_weight.y,
+                                want.reflect_weight.z}) == floor;
+          EXPECT_TRUE(sameVector(want.reflect_dir, out.fdx[k], out.fdy[k], out.fdz[k]));
+          EXPECT_TRUE(sameVector(want.reflect_weight, out.fwr[k], out.fwg[k], out.fwb[k]));
+        }
+      }
+    }
+  }
+  EXPECT_GT(refracted, 1000u);
+  EXPECT_GT(reflected, 1000u);
+  EXPECT_GT(inside, 1000u);
+  EXPECT_GT(away, 100u);
+  EXPECT_GT(at_floor, 10u);
+}
+
 class PlainShadingFrames : public test::DefaultSceneTest {
  protected:
   Frame render(const Scene& scene, RenderSettings settings, bool plain_lanes) {
@@ -181,8 +286,37 @@ TEST_F(PlainShadingFrames, EqualTheOneHitLoop) {
   expectSameFrame(scene_, brighter, "ambient 0.3");
 }
 
-// A material that blends, or has a mirror, is not plain: its hits spawn rays.
-TEST_F(PlainShadingFrames, BlendingAndMirrorsStayOnTheOneHitLoop) {
+// The mirror's and the glass's hits spawn their reflection and refraction rays in lanes:
+// with rays too faint to trace, at every depth limit, through denser glass (more total
+// internal reflection), and beside a glass that absorbs (which keeps the one-hit loop).
+TEST_F(PlainShadingFrames, SpawnedRaysEqualTheOneHitLoop) {
+  RenderSettings s;
+  s.width = 120;
+  s.height = 90;
+  RenderSettings faint = s;
+  faint.min_path_weight = 0.05f;
+  expectSameFrame(scene_, faint, "min path weight 0.05");
+  for (int depth : {0, 1, 3}) {
+    RenderSettings shallow = s;
+    shallow.max_depth = depth;
+    expectSameFrame(scene_, shallow, "max depth " + std::to_string(depth));
+  }
+  size_t glass = 0;
+  for (size_t i = 0; i < scene_.materials.size(); ++i)
+    if (scene_.materials[i].transmission > 0.0f) glass = i;
+  ASSERT_GT(scene_.materials[glass].transmission, 0.0f);
+  Scene dense = scene_;
+  dense.materials[glass].ior = 2.4f;
+  dense.materials[glass].base_color = glm::vec3(0.9f, 0.6f, 0.3f);
+  expectSameFrame(dense, s, "ior 2.4, tinted");
+  Scene absorbing = scene_;
+  absorbing.materials[glass].attenuation_distance = 0.5f;
+  absorbing.materials[glass].attenuation_color = glm::vec3(0.5f, 0.8f, 0.9f);
+  expectSameFrame(absorbing, s, "absorbing glass");
+}
+
+// A material that blends stays on the one-hit loop; one made a mirror takes the lanes.
+TEST_F(PlainShadingFrames, BlendedAndMirroredWallsEqualTheOneHitLoop) {
   RenderSettings s;
   s.width = 96;
   s.height = 72;
