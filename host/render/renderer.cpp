@@ -728,22 +728,19 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
           }
           if (!spawning) continue;
           const float cone = coneWidth(path.cone, lanes.t[k]);
-          if (spawned.refract[k]) {
+          auto spawnRay = [&](float ox, float oy, float oz, float dx, float dy, float dz, float wr,
+                              float wg, float wb, RayKind kind) {
             const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
-            out.rays[s] = GrRay{spawned.rox[k], spawned.roy[k], spawned.roz[k], 0.0f,
-                                spawned.rdx[k], spawned.rdy[k], spawned.rdz[k], kInf};
-            out.paths[s] =
-                PathRay{path.pixel, glm::vec3(spawned.rwr[k], spawned.rwg[k], spawned.rwb[k]),
-                        RayKind::Refraction, cone};
-          }
-          if (spawned.reflect[k]) {
-            const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
-            out.rays[s] = GrRay{plain.ax[k],    plain.ay[k],    plain.az[k],    0.0f,
-                                spawned.fdx[k], spawned.fdy[k], spawned.fdz[k], kInf};
-            out.paths[s] =
-                PathRay{path.pixel, glm::vec3(spawned.fwr[k], spawned.fwg[k], spawned.fwb[k]),
-                        RayKind::Reflection, cone};
-          }
+            out.rays[s] = GrRay{ox, oy, oz, 0.0f, dx, dy, dz, kInf};
+            out.paths[s] = PathRay{path.pixel, glm::vec3(wr, wg, wb), kind, cone};
+          };
+          const SpawnLanes& o = spawned;  // the refraction ray first, as below
+          if (o.refract[k])
+            spawnRay(o.rox[k], o.roy[k], o.roz[k], o.rdx[k], o.rdy[k], o.rdz[k], o.rwr[k], o.rwg[k],
+                     o.rwb[k], RayKind::Refraction);
+          if (o.reflect[k])
+            spawnRay(plain.ax[k], plain.ay[k], plain.az[k], o.fdx[k], o.fdy[k], o.fdz[k], o.fwr[k],
+                     o.fwg[k], o.fwb[k], RayKind::Reflection);
           continue;
         }
         const GrHit& hit = g.hits[i];
