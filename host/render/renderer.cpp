@@ -722,8 +722,9 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
             if (!c.emit[k]) continue;
             const LightLanes& light = out.light_lanes[l];
             const size_t s = nextSlot(out.shadow_rays, out.shadows, out.shadow_count);
-            out.shadow_rays[s] = GrRay{plain.ax[k], plain.ay[k], plain.az[k], plain.offset[k],
-                                       light.lx[k], light.ly[k], light.lz[k], light.distance[k]};
+            out.shadow_rays[s] = makeRay(glm::vec3(plain.ax[k], plain.ay[k], plain.az[k]),
+                                         glm::vec3(light.lx[k], light.ly[k], light.lz[k]),
+                                         light.distance[k], plain.offset[k]);
             out.shadows[s] = ShadowRay{path.pixel, int(l), glm::vec3(c.cr[k], c.cg[k], c.cb[k])};
           }
           if (!spawning) continue;
@@ -731,7 +732,7 @@ size_t Renderer::shadeWhitted(int depth, const std::vector<GrRay>& rays,
           auto spawnRay = [&](float ox, float oy, float oz, float dx, float dy, float dz, float wr,
                               float wg, float wb, RayKind kind) {
             const size_t s = nextSlot(out.rays, out.paths, out.ray_count);
-            out.rays[s] = GrRay{ox, oy, oz, 0.0f, dx, dy, dz, kInf};
+            out.rays[s] = makeRay(glm::vec3(ox, oy, oz), glm::vec3(dx, dy, dz), kInf);
             out.paths[s] = PathRay{path.pixel, glm::vec3(wr, wg, wb), kind, cone};
           };
           const SpawnLanes& o = spawned;  // the refraction ray first, as below

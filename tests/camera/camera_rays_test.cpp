@@ -4,13 +4,14 @@
 
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <vector>
+
+#include "test_support.h"
 
 namespace gridrt {
 namespace {
 
-bool sameBits(const GrRay& a, const GrRay& b) { return std::memcmp(&a, &b, sizeof(GrRay)) == 0; }
+using test::sameBits;  // a ray compared field by field, as bits
 
 TEST(CameraRays, CentreRowEqualsPerPixelRaysBitForBit) {
   struct Case {

@@ -4,6 +4,7 @@
 #include <functional>
 #include <glm/glm.hpp>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "gridrt_types.h"
@@ -16,8 +17,13 @@ std::string gridrtBinary();                           // build/gridrt
 std::string tempPath(const std::string& name);        // a fresh path under a per-test temp dir
 bool fileExists(const std::string& path);
 
-// Whether two floats are the same bits (so -0 differs from +0, and a NaN equals itself).
-inline bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+// Whether two values are the same bits (floats: -0 differs from +0, and a NaN equals
+// itself; a struct of floats, such as a ray, field by field).
+template <typename T>
+bool sameBits(const T& a, const T& b) {
+  static_assert(std::is_trivially_copyable_v<T>, "compared as bytes");
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 // An empty directory of its own (under the per-process temp dir), so a test's listings
 // see only that test's files; and the sorted names in a directory.

@@ -1,11 +1,10 @@
 // The light bundles' passes over each ray of a batch towards a light (light_bundles.h).
-// The first:
-// each ray's cube face, its point on that face and its origin's depth, the faces' windows,
-// and what light culling needs of the batch. scanLightRay is the definition, one ray at a
-// time; scanLightRays makes the same values a vector of rays at a time (Highway, the
-// build's static target), bit for bit: the same IEEE operations in the same order
-// (tests/gridrt/bundles/light_ray_scan_test.cpp). The one-ray pass took ~8 ns of a core
-// a ray, five times what reading the rays and writing its outputs take.
+// The first finds each ray's cube face, its point on that face and its origin's depth, the
+// faces' windows, and what light culling needs of the batch; the second, each ray's cell.
+// scanLightRay is the definition, one ray at a time; scanLightRays makes the same values a vector
+// of rays at a time (Highway, the build's static target), bit for bit: the same IEEE operations in
+// the same order (tests/gridrt/bundles/light_ray_scan_test.cpp). The one-ray pass took ~8 ns of a
+// core a ray, five times what reading the rays and writing its outputs take.
 #pragma once
 #include <array>
 #include <cmath>

@@ -6,19 +6,17 @@
 
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <limits>
 #include <random>
 #include <set>
 #include <vector>
 
+#include "test_support.h"
+
 namespace gridrt {
 namespace {
 
-template <typename T>
-bool sameBits(T a, T b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;
-}
+using test::sameBits;
 
 // Rays towards `light` from points all around it.
 std::vector<GrRay> raysTowards(const glm::vec3& light, size_t count) {
