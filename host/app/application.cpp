@@ -22,6 +22,7 @@
 #include "crop_window.h"
 #include "dda_intersector.h"
 #include "default_scene.h"
+#include "device_step.h"
 #include "errors.h"
 #include "frame_sequence.h"
 #include "frame_statistics.h"
@@ -32,10 +33,12 @@
 #include "mesh_import.h"
 #include "missing_device.h"
 #include "parallel_loops.h"
+#include "prepared_scene.h"
 #include "prepared_triangles.h"
 #include "progress.h"
 #include "reference_intersector.h"
 #include "renderer.h"
+#include "scene_source.h"
 #include "standard_input_scene.h"
 #include "standard_streams.h"
 #include "stopwatch.h"
@@ -80,34 +83,6 @@ void checkImageFitsDevice(const Options& o, const DeviceInfo& device) {
     refuseImage(o, need, double(device.global_mem_bytes), "device memory");
 }
 
-// Runs `step`, turning an OpenCL error into a RenderError that says what was being done
-// (main() would otherwise only know the failing OpenCL call), with a hint for the errors
-// that mean "too big for this device".
-template <class Step>
-auto during(const std::string& what, Step&& step) -> decltype(step()) {
-  try {
-    return step();
-  } catch (const cl::Error& e) {
-    std::string message =
-        "OpenCL error while " + what + ": " + e.what() + " returned " + clErrorName(e.err());
-    if (e.err() == CL_OUT_OF_RESOURCES || e.err() == CL_OUT_OF_HOST_MEMORY ||
-        e.err() == CL_MEM_OBJECT_ALLOCATION_FAILURE || e.err() == CL_INVALID_BUFFER_SIZE)
-      message +=
-          " (the device ran out of memory or resources: try a smaller image, fewer "
-          "--spp or a coarser --grid)";
-    throw RenderError(message);
-  }
-}
-
-// The built-in scene is not loaded through the glTF loader, so --camera is checked here.
-Scene loadDefaultScene(const Options& o) {
-  Scene scene = makeDefaultScene();
-  if (!o.camera_name.empty() && o.camera_name != scene.camera.name && o.camera_name != "0")
-    throw UsageError("--camera: the built-in default scene has no camera '" + o.camera_name +
-                     "' (its only camera is 0 = '" + scene.camera.name + "')");
-  return scene;
-}
-
 // One frame a run renders: its number (--frames), the time it is posed at (--time,
 // --frames; none: the still pose) and the files it writes.
 struct FrameJob {
@@ -136,66 +111,6 @@ std::vector<FrameJob> frameJobs(const Options& o) {
   return jobs;
 }
 
-// Where the frames come from: a fixed scene (the built-in one, or a file in its still
-// pose), or a glTF document with its animations, posed for each frame.
-struct SceneSource {
-  std::optional<AnimatedScene> animated;
-  std::vector<std::string> warnings;  // about the animation, said once
-};
-
-// Loads the scene and poses it for the first frame. Animations are read (and checked)
-// only when a time is asked for; the still pose is as written.
-SceneSource loadScene(const Options& o, const FrameJob& first, Scene& first_scene) {
-  SceneSource source;
-  const bool posed = first.time.has_value();
-  if (o.scene.empty()) {
-    if (!o.animation.empty())
-      throw UsageError("--animation '" + o.animation + "': the built-in scene has no animations");
-    first_scene = loadDefaultScene(o);
-    if (posed)
-      source.warnings.push_back(
-          "the built-in scene has no animations: --time/--frames "
-          "render it as it is");
-    return source;
-  }
-  if (isImportedMeshFile(o.scene)) {
-    // Geometry and material colours only: no cameras, animations or textures (mesh_import.h).
-    if (!o.camera_name.empty())
-      throw UsageError("--camera '" + o.camera_name + "': " + o.scene +
-                       " is read without cameras (the view frames the scene)");
-    if (!o.animation.empty())
-      throw UsageError("--animation '" + o.animation + "': " + o.scene +
-                       " is read without animations");
-    first_scene = importMeshFile(o.scene);
-    if (posed)
-      source.warnings.push_back(o.scene +
-                                " is read without animations: --time/--frames "
-                                "render it as it is");
-    return source;
-  }
-  GltfDocument document =
-      o.scene == kStandardInput ? readStandardInputScene() : GltfDocument::fromFile(o.scene);
-  const size_t animations = document.model().animations.size();
-  if (!posed) {
-    if (animations > 0)
-      source.warnings.push_back("the scene has " + std::to_string(animations) +
-                                " animation(s); rendered in its still pose (--time or --frames "
-                                "poses it)");
-    first_scene = document.flatten(GltfLoadOptions{o.camera_name});
-    decodeTextures(first_scene);  // the loader keeps its images encoded
-    return source;
-  }
-  source.animated.emplace(std::move(document), GltfLoadOptions{o.camera_name}, o.animation);
-  for (const auto& w : source.animated->warnings()) source.warnings.push_back(w);
-  if (!source.animated->moves())
-    source.warnings.push_back(
-        "the scene has no animation channels: --time/--frames render its "
-        "still pose");
-  first_scene = source.animated->at(*first.time);
-  decodeTextures(first_scene);  // once: every frame's pose reads the same images
-  return source;
-}
-
 // --stats-json is written after the render: check its folder first, so that a typo does
 // not cost a whole render (and leave an image without its statistics).
 void validateStatsPath(const std::string& path) {
@@ -210,24 +125,6 @@ void validateStatsPath(const std::string& path) {
                       "' is not writable");
   if (std::filesystem::is_directory(p, ec))
     throw RenderError("cannot write '" + path + "': it is a directory");
-}
-
-// `framing`: the box a scene without a camera is framed on (an animated scene's still
-// pose, so that the camera stays put while the scene moves).
-Camera chooseCamera(const Options& o, const Scene& scene, const Bounds& framing) {
-  Camera camera = scene.has_camera ? scene.camera : defaultCamera(framing);
-  if (o.eye) {
-    // Moved and turned, the camera keeps its projection (an orthographic one stays so).
-    Camera looked = lookAtCamera(*o.eye, *o.target, camera.yfov);
-    looked.orthographic = camera.orthographic;
-    looked.xmag = camera.xmag, looked.ymag = camera.ymag, looked.aspect = camera.aspect;
-    camera = looked;
-  }
-  if (o.fov_degrees) {
-    camera.orthographic = false;
-    camera.yfov = *o.fov_degrees * 3.14159265f / 180.0f;
-  }
-  return camera;
 }
 
 // An image of the film's pixels as its file holds it under --crop: the renderer's film
@@ -284,30 +181,6 @@ void writeOutputs(const Options& o, const FrameJob& job, const Frame& frame) {
   }
 }
 
-RenderSettings renderSettings(const Options& o) {
-  RenderSettings settings;
-  settings.width = o.width;
-  settings.height = o.height;
-  settings.spp = o.spp;
-  settings.max_depth = o.max_depth;
-  settings.primary_only = o.primary_only;
-  settings.background = o.background;
-  settings.ambient = o.ambient;
-  settings.ray_offset = o.ray_offset;
-  settings.shading = o.shading;
-  settings.adaptive_aa = o.adaptive_aa;
-  settings.aa_samples = o.aa_samples;
-  settings.aa_threshold = o.aa_threshold;
-  settings.min_path_weight = o.min_path_weight;
-  if (o.crop) settings.crop = *o.crop;  // only the window's rays are traced
-  // Filling them costs time per frame.
-  settings.want_aovs = !o.aovs.empty() || !o.aov_layers.empty();
-  settings.want_alpha = o.alpha;
-  for (const auto& aov : o.aovs) settings.want_diagnostics |= isDiagnosticAov(aov.first);
-  for (const auto& name : o.aov_layers) settings.want_diagnostics |= isDiagnosticAov(name);
-  return settings;
-}
-
 // Per-frame timings of the timed frames, and the intersector counters of the first.
 struct FrameTimings {
   FramePhaseTimes phases;
@@ -344,22 +217,6 @@ FrameTimings renderFrames(const Options& o, Renderer& renderer, Intersector& int
     t.reduce_ms.push_back(after.reduce_ms - before.reduce_ms);
   }
   return t;
-}
-
-std::unique_ptr<Intersector> makeIntersector(const Options& o, ClRuntime& runtime,
-                                             const Scene& scene,
-                                             const std::vector<GrTriangle>& triangles,
-                                             const UniformGrid& grid, GridRtIntersector*& gridrt) {
-  gridrt = nullptr;
-  const KernelOptions kernel{o.watertight, o.pe_layout, o.transfer};
-  if (o.accel == AccelKind::Brute)
-    return std::make_unique<BruteIntersector>(runtime, triangles, kernel);
-  if (o.accel == AccelKind::Reference) return std::make_unique<ReferenceIntersector>(scene);
-  if (o.accel == AccelKind::Dda) return std::make_unique<DdaIntersector>(runtime, grid, kernel);
-  auto g = std::make_unique<GridRtIntersector>(
-      runtime, grid, o.pe_interrupt ? PeInterrupt::AllRays : PeInterrupt::CameraRays, kernel);
-  gridrt = g.get();
-  return g;
 }
 
 void printSummary(const Options& o, const Frame& frame, double median_frame,
@@ -399,28 +256,16 @@ FrameResult renderScene(const Options& o, ClRuntime& runtime, const Scene& scene
                         const Camera& camera, const std::function<void(double)>& progress,
                         bool report_choices) {
   FrameResult result;
-  std::vector<GrTriangle> triangles = prepareTriangles(scene, KernelOptions{o.watertight});
-  Stopwatch clock;
-  UniformGrid grid;
-  bool uses_grid = o.accel == AccelKind::GridRt || o.accel == AccelKind::Dda;
-  if (uses_grid) {
-    GridSettings settings = o.grid;
-    settings.ray_origins = primaryRayOrigins(camera, o.width, o.height);
-    if (o.accel == AccelKind::Dda) settings.structure = GridStructure::Uniform;  // it walks voxels
-    grid = buildGrid(triangles, sceneBounds(scene), settings);
-  }
-  double build_ms = clock.ms();
+  PreparedScene prepared(o, runtime, scene, camera);
+  const UniformGrid* grid = prepared.grid();
+  const bool uses_grid = grid != nullptr;
+  const double build_ms = prepared.buildMs();
   if (report_choices)
-    for (const std::string& line :
-         choicesReport(o, scene, camera, uses_grid ? &grid : nullptr, build_ms))
+    for (const std::string& line : choicesReport(o, scene, camera, grid, build_ms))
       std::cerr << "gridrt: " << line << '\n';
-
-  clock.restart();
-  GridRtIntersector* gridrt = nullptr;
-  std::unique_ptr<Intersector> intersector =
-      during("building the kernels and uploading the scene",
-             [&] { return makeIntersector(o, runtime, scene, triangles, grid, gridrt); });
-  result.setup_ms = clock.ms();
+  Intersector* intersector = &prepared.intersector();
+  GridRtIntersector* gridrt = prepared.gridrt();
+  result.setup_ms = prepared.setupMs();
   result.accel = intersector->name();
 
   Renderer renderer(scene, camera, *intersector, renderSettings(o));
@@ -458,19 +303,19 @@ FrameResult renderScene(const Options& o, ClRuntime& runtime, const Scene& scene
   stats["tests_per_ray"] = c.rays ? double(c.tests) / double(c.rays) : 0.0;
   stats["tests_run_per_ray"] = c.rays ? double(c.tests_run) / double(c.rays) : 0.0;
   if (uses_grid) {
-    std::vector<int> refs(grid.peCount());
-    for (int pe = 0; pe < grid.peCount(); ++pe) refs[pe] = grid.triangleCountOfPe(pe);
+    std::vector<int> refs(grid->peCount());
+    for (int pe = 0; pe < grid->peCount(); ++pe) refs[pe] = grid->triangleCountOfPe(pe);
     MeanMax r = meanMax(refs);
-    stats["grid"] = {{"structure", grid.adaptive.empty() ? "uniform" : "adaptive"},
-                     {"depth", grid.adaptive.depth},
-                     {"dims", {grid.info.nx, grid.info.ny, grid.info.nz}},
-                     {"voxels", grid.voxelCount()},
-                     {"pes", grid.peCount()},
+    stats["grid"] = {{"structure", grid->adaptive.empty() ? "uniform" : "adaptive"},
+                     {"depth", grid->adaptive.depth},
+                     {"dims", {grid->info.nx, grid->info.ny, grid->info.nz}},
+                     {"voxels", grid->voxelCount()},
+                     {"pes", grid->peCount()},
                      {"refs_per_pe_mean", r.mean},
                      {"refs_per_pe_max", r.max},
-                     {"memory_bytes", grid.memoryBytes()},
+                     {"memory_bytes", grid->memoryBytes()},
                      {"build_ms", build_ms},
-                     {"margin", grid.margin}};
+                     {"margin", grid->margin}};
   }
   if (gridrt) {
     MeanMax rays_pe = meanMax(gridrt->raysPerPe()), tests_pe = meanMax(gridrt->testsPerPe());
@@ -500,15 +345,6 @@ FrameResult renderScene(const Options& o, ClRuntime& runtime, const Scene& scene
 
 }  // namespace
 
-// The image size: as given, or with no --width/--height (and no --crop, which is placed in
-// the given size) from the scene camera's aspectRatio at the default height.
-Options sizedForCamera(const Options& given, const Camera& camera) {
-  Options o = given;
-  if (!o.size_given && !o.crop && camera.aspect > 0.0f && std::isfinite(camera.aspect))
-    o.width = int(std::clamp(std::lround(double(o.height) * camera.aspect), 1L, 65536L));
-  return o;
-}
-
 int runApplication(const Options& given) {
   const ThreadLimit thread_limit(given.threads);
   if (given.list_devices) {
@@ -533,7 +369,7 @@ int runApplication(const Options& given) {
 
   Stopwatch clock;
   Scene first_scene;
-  const SceneSource source = loadScene(given, jobs.front(), first_scene);
+  const SceneSource source = loadScene(given, jobs.front().time, first_scene);
   double load_ms = clock.ms();
   if (!given.quiet) {
     for (const auto& w : given.warnings) std::cerr << "gridrt: warning: " << w << '\n';
