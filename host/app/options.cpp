@@ -288,6 +288,10 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.add_option("--threads", o.threads, "threads for the host and a CPU device (0: all cores)")
       ->capture_default_str()
       ->check(integerIn(0, 4096));
+  app.add_option("--wave-rays", o.wave_rays,
+                 "camera rays a wave of the frame holds at most (whole rows; same image)")
+      ->capture_default_str()
+      ->check(integerIn(1, int(kMaxBatchRays)));
   app.add_option("--accel", raw.accel,
                  "intersector: gridrt, dda, brute (device) or reference (host, double)")
       ->capture_default_str()

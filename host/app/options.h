@@ -12,6 +12,7 @@
 #include "gltf_brdf.h"
 #include "image_format.h"
 #include "intersector.h"
+#include "renderer.h"
 #include "uniform_grid.h"
 #include "whitted_shading.h"
 
@@ -41,6 +42,9 @@ struct Options {
   int max_depth = 5;
   std::string device;  // "" first device, "P:D", or a name substring
   int threads = 0;     // --threads: host loops and the CPU device; 0 = every core
+  // --wave-rays: camera rays (pixels x samples) a wave of the frame holds at most, in whole
+  // rows; the image is the same bit for bit whatever the size (renderer.h).
+  int wave_rays = int(kMaxPassRays);
   bool list_devices = false;
   AccelKind accel = AccelKind::GridRt;
   GridSettings grid;                            // --grid auto | NX,NY,NZ; --grid-density

@@ -47,6 +47,7 @@ RenderSettings renderSettings(const Options& o) {
   settings.aa_samples = o.aa_samples;
   settings.aa_threshold = o.aa_threshold;
   settings.min_path_weight = o.min_path_weight;
+  settings.max_pass_rays = size_t(o.wave_rays);
   if (o.crop) settings.crop = *o.crop;  // only the window's rays are traced
   // Filling them costs time per frame.
   settings.want_aovs = !o.aovs.empty() || !o.aov_layers.empty();

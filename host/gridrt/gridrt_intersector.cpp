@@ -333,8 +333,12 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   counters_.kernel_ms += clock.ms();
 
   // Phase 2: per ray, the smallest (t, prim) over its PEs' in-voxel hits
-  // (PacketResults::keepNearer). Each thread owns a range of rays and picks their lanes
-  // out of the packets' hit (and skip) masks; the tests are counted per task.
+  // (PacketResults::keepNearer), in two steps that read each result once whatever the
+  // thread count: each slice takes the tasks whose packets start in its share of the
+  // packets, counts their tests and sends each hit lane (and, for the diagnostics, each
+  // lane the interrupt skipped) to the slice that owns its ray; then each slice reduces
+  // what was sent to its rays. keepNearer is a total order on (t, prim, PE), so the hits
+  // do not depend on the order the lanes arrive in.
   clock.restart();
   if (diagnostics) {
     diagnostics->tests.assign(n, 0);
@@ -343,11 +347,42 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   }
   const PacketResults results(results_map_, bins_.packets * GR_PACKET_LANES, GR_LIST_RESULT_PLANES);
   const std::vector<GrPeTask>& tasks = bins_.tasks;
-  std::vector<SliceTally> tallies(parallelSliceCount());
-  parallelSlices(int(tallies.size()), [&](int me, int count) {
+  const int slices = parallelSliceCount();
+  std::vector<SliceTally> tallies(slices);
+  sent_lanes_.resize(size_t(slices) * size_t(slices));
+  const size_t rays_per_slice = std::max<size_t>(1, (n + size_t(slices) - 1) / size_t(slices));
+  parallelSlices(slices, [&](int me, int count) {
     SliceTally& tally = tallies[me];
-    const long long lo = (long long)(n * me / count), hi = (long long)(n * (me + 1) / count);
-    for (long long r = lo; r < hi; ++r) {
+    for (int to = 0; to < count; ++to) sent_lanes_[size_t(me) * count + to].clear();
+    const auto [packet_lo, packet_hi] = sliceRange(bins_.packets, me, count);
+    for (const GrPeTask& task : tasks) {
+      if (size_t(task.first_packet) < packet_lo || size_t(task.first_packet) >= packet_hi) continue;
+      const int cost = grid_.triangleCountOfPe(task.pe);
+      const int packets = (task.pair_count + GR_PACKET_LANES - 1) / GR_PACKET_LANES;
+      for (int p = task.first_packet; p < task.first_packet + packets; ++p) {
+        const GrPacketMasks& m = results.masks[p];
+        tally.tests += uint64_t(popcount(m.pierced & ~m.skipped)) * cost;
+        tally.tests_run += uint64_t(m.tests);
+        tally.skipped += popcount(m.skipped);
+        const uint32_t first = uint32_t(p) * GR_PACKET_LANES;
+        auto send = [&](int bits, int32_t pe) {
+          for (; bits; bits &= bits - 1) {
+            const uint32_t lane = first + uint32_t(__builtin_ctz(unsigned(bits)));
+            const int32_t ray = results.ray[lane];
+            sent_lanes_[size_t(me) * count + size_t(ray) / rays_per_slice].push_back(
+                SentLane{lane, pe, ray});
+          }
+        };
+        send(m.hit & ~m.skipped, task.pe);
+        if (diagnostics) send(m.skipped, -1 - task.pe);
+      }
+    }
+  });
+  parallelSlices(slices, [&](int me, int count) {
+    SliceTally& tally = tallies[me];
+    const size_t lo = std::min(n, size_t(me) * rays_per_slice);
+    const size_t hi = std::min(n, lo + rays_per_slice);
+    for (size_t r = lo; r < hi; ++r) {
       hits[r] = GrHit{rays[r].tmax, -1, 0.0f, 0.0f};
       const int length = lists_.lengthOf(r);
       tally.longest = std::max<uint64_t>(tally.longest, uint64_t(length));
@@ -359,32 +394,15 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
         diagnostics->tests[r] = ray_tests;  // less its skipped pairs, below
       }
     }
-    for (size_t k = 0; k < tasks.size(); ++k) {
-      const GrPeTask& task = tasks[k];
-      const int cost = grid_.triangleCountOfPe(task.pe);
-      const int packets = (task.pair_count + GR_PACKET_LANES - 1) / GR_PACKET_LANES;
-      for (int p = task.first_packet; p < task.first_packet + packets; ++p) {
-        const GrPacketMasks& m = results.masks[p];
-        if (int(k % size_t(count)) == me) {
-          tally.tests += uint64_t(popcount(m.pierced & ~m.skipped)) * cost;
-          tally.tests_run += uint64_t(m.tests);
-          tally.skipped += popcount(m.skipped);
-        }
-        // The rays of this slice's range, by lane (the pairs carry their rays).
-        const size_t first = size_t(p) * GR_PACKET_LANES;
-        auto rayOfLane = [&](int lane) {
-          const int ray = results.ray[first + size_t(lane)];
-          return ray >= lo && ray < hi ? ray : -1;
-        };
-        if (diagnostics)
-          for (int bits = m.skipped; bits; bits &= bits - 1) {
-            const int ray = rayOfLane(__builtin_ctz(unsigned(bits)));
-            if (ray >= 0) diagnostics->tests[ray] -= cost;
-          }
-        results.reduceHits(m.hit & ~m.skipped, first, task.pe, rayOfLane, hits,
-                           diagnostics ? &diagnostics->winning_pe : nullptr);
+    std::vector<int>* winners = diagnostics ? &diagnostics->winning_pe : nullptr;
+    for (int from = 0; from < count; ++from)
+      for (const SentLane& sent : sent_lanes_[size_t(from) * count + me]) {
+        if (sent.pe >= 0)
+          results.keepNearer(sent.lane, sent.pe, hits[sent.ray],
+                             winners ? &(*winners)[sent.ray] : nullptr);
+        else
+          diagnostics->tests[sent.ray] -= grid_.triangleCountOfPe(-1 - sent.pe);
       }
-    }
   });
   const SliceTally sum = SliceTally::sumOf(tallies);
   max_list_length_ = std::max(max_list_length_, sum.longest);

@@ -248,6 +248,14 @@ class GridRtIntersector : public Intersector {
   RayBundles light_bundles_;
   LightBundleScratch light_scratch_;
   std::vector<std::vector<int>> thread_pe_pairs_;  // per thread, pairs per PE
+  // The list path's phase 2: the result lanes slice `from` found for the rays of slice
+  // `to`, at [from * slices + to] (kept between batches).
+  struct SentLane {
+    uint32_t lane;  // result lane
+    int32_t pe;     // its PE; -1 - pe for a lane the interrupt skipped (diagnostics)
+    int32_t ray;
+  };
+  std::vector<std::vector<SentLane>> sent_lanes_;
   // Packet culling: the PE triangles' boxes (in pe_triangles order) and their device copy.
   CullPlaneCache cull_cache_;
   DeviceBuffer<float> cull_planes_{"the culling boxes", CL_MEM_READ_ONLY};

@@ -1,4 +1,5 @@
-// The README's CLI reference is `gridrt --help` verbatim (tools/update_readme_cli.sh).
+// docs/cli.md's reference is `gridrt --help` verbatim (tools/update_cli_reference.sh), and
+// the README's picture is what the program renders.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,8 +16,8 @@ namespace gridrt {
 namespace {
 
 TEST(Readme, CliReferenceEqualsHelpText) {
-  std::ifstream in(test::sourcePath("README.md"));
-  ASSERT_TRUE(in) << "README.md missing";
+  std::ifstream in(test::sourcePath("docs/cli.md"));
+  ASSERT_TRUE(in) << "docs/cli.md missing";
   std::stringstream buffer;
   buffer << in.rdbuf();
   std::string readme = buffer.str();
@@ -27,7 +28,7 @@ TEST(Readme, CliReferenceEqualsHelpText) {
   std::string block = readme.substr(b + begin.size(), e - b - begin.size());
   std::string help = helpText();
   while (!help.empty() && help.back() == '\n') help.pop_back();
-  EXPECT_EQ(block, help + "\n") << "run tools/update_readme_cli.sh";
+  EXPECT_EQ(block, help + "\n") << "run tools/update_cli_reference.sh";
 }
 
 // The README's picture is what the program renders: the command of
