@@ -3,7 +3,10 @@
 // next batch (reflection and refraction) and shadow rays per light, until max depth.
 // Nothing later depends on a shadow ray, so the shadow rays of all depths are traced in
 // one batch at the end of the pass, and only then is the light added to the pixels. A
-// large frame is rendered in several such passes, bands of whole rows (kMaxPassRays).
+// large frame is rendered in several such passes, bands of whole rows (kMaxPassRays):
+// the frame's waves. The loop's rooms: renderer.cpp (the frame and its waves),
+// renderer_batches.cpp (rays to the intersector), renderer_shading.cpp (the shading
+// passes), renderer_film.cpp (what a wave adds to the film and the AOVs).
 #pragma once
 #include <array>
 #include <functional>
@@ -171,6 +174,9 @@ class Renderer {
   // point or spot light through Intersector::intersectTowardsPoint; then past see-through
   // surfaces (their rays traced again counted into see_through_rays).
   void traceShadows(double& ms, uint64_t& see_through_rays);
+  // shadow_rays_ into light_rays_ / light_ray_index_ by light, a stable counting sort on all
+  // cores.
+  void splitShadowsByLight();
   // Shades generation `depth` (its hits in generations_[depth]): headlight shading with
   // primary_only, Whitted shading otherwise. Returns the shadow rays it spawned.
   size_t shadeGeneration(int depth, const std::vector<GrRay>& rays,
@@ -269,8 +275,11 @@ class Renderer {
   std::vector<ShadowRay> shadows_;
   std::vector<GrHit> shadow_hits_;
   std::vector<float> shadow_light_share_;  // per shadow ray: the light past see-through surfaces
-  std::vector<GrRay> light_rays_;          // one light's shadow rays (several lights)
-  std::vector<size_t> light_ray_index_;    // ... and their indices in the shadow rays
+  // With several lights, each light's shadow rays in their order, and their indices in
+  // shadow_rays_ (splitShadowsByLight).
+  std::vector<std::vector<GrRay>> light_rays_;
+  std::vector<std::vector<size_t>> light_ray_index_;
+  std::vector<std::vector<size_t>> slice_light_counts_;  // scratch: per slice, rays per light
   std::vector<Spawned> spawned_;
   std::vector<size_t> chunk_offsets_;  // where each chunk's output starts (concatenateChunks)
   // The pixels the film holds (the crop window, or the whole image); the pixels traced,

@@ -5,6 +5,7 @@
 #include "adaptive_lists.h"
 #include "dda_packet.h"
 #include "parallel_loops.h"
+#include "parallel_scan.h"
 
 namespace gridrt {
 
@@ -49,8 +50,8 @@ void computeListsOverCells(const GrGridInfo& g, const int* codes, const GrRay* r
       }
     }
   });
-  // The counts made offsets.
-  for (size_t r = 0; r < count; ++r) lists.begin[r + 1] += lists.begin[r];
+  // The counts made offsets (begin[0] is 0).
+  inclusiveScan(lists.begin.data() + 1, count);
 }
 
 void computeTraversalLists(const UniformGrid& grid, const GrRay* rays, size_t count,
