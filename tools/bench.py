@@ -6,7 +6,7 @@ Each figure is the median of --frames frames rendered after one warm-up frame (g
 their own columns (load_ms, compile_ms, build_ms).
 
     .venv/bin/python tools/bench.py paper     # the paper's experiment (bunny_res4, 320x240)
-    .venv/bin/python tools/bench.py scaling   # triangles and image size
+    .venv/bin/python tools/bench.py scaling   # triangles, image size, and every pass against threads
     .venv/bin/python tools/bench.py whitted   # full Whitted frames with shadows (median of 5 processes),
                                               # and the default and bunny frames with Embree tracing beside gridrt
     .venv/bin/python tools/bench.py targets   # the four speed targets, Embree beside
@@ -160,10 +160,63 @@ def bench_scaling(frames):
         for w, h in sizes:
             s = run([os.path.join(MODELS, name), "--width", str(w), "--height", str(h),
                      "--primary-only"], frames)
-            rows.append(row(f"{name} {w}x{h}", s, scene=name,
+            rows.append(row(f"{name} {w}x{h}", s, scene=name, kind="size",
                             ns_per_ray=s["frame_ms"] * 1e6 / s["rays"]["total"]))
             print(f"scaling {name:15s} {w}x{h}: {s['frame_ms']:8.2f} ms, "
                   f"{s['mrays_per_s']:6.2f} Mrays/s, build {s['build_ms']:.1f} ms", flush=True)
+    return rows + thread_rows(frames)
+
+
+# The passes of a Whitted frame by which the thread scaling is charted: gridrt's own
+# (host passes, the PE kernels, phase 2) and those every tracer shares (shading, frame).
+GRIDRT_PASSES = ("walk_ms", "binning_ms", "bundling_ms", "kernel_ms", "reduce_ms", "shade_ms",
+                 "frame_ms")
+
+
+def embree_passes():
+    return WHITTED_PHASES + ("frame_ms",)
+
+
+def thread_counts():
+    """1, 2, 4, ... up to the machine's cores, and the cores themselves."""
+    cores = os.cpu_count() or 1
+    counts = [1]
+    while counts[-1] * 2 <= cores:
+        counts.append(counts[-1] * 2)
+    return counts if counts[-1] == cores else counts + [cores]
+
+
+def thread_rows(frames, rounds=None):
+    """The default Whitted frame on 1..cores threads (gridrt's --threads: host loops and a CPU
+    device; Embree packets in the same renderer on as many), the variants in turns, each
+    pass the median of the rounds; the speed-up of each against its own 1-thread time."""
+    rounds = rounds or TARGET_RUNS
+    args = ["--width", "640", "--height", "480", "--max-depth", "5"]
+    variants = []
+    for t in thread_counts():
+        variants.append((("gridrt", t), lambda t=t: run(args + ["--threads", str(t)], frames)))
+        if os.path.exists(EMBREE_PEER):
+            variants.append((("embree 16-ray packets", t),
+                             lambda t=t: run_peer_whitted(args, frames, 16, threads=t)))
+    results = {key: [] for key, _ in variants}
+    for _ in range(rounds):
+        for key, measure in variants:
+            results[key].append(measure())
+    rows = []
+    for (tracer, t), _ in variants:
+        passes = GRIDRT_PASSES if tracer == "gridrt" else embree_passes()
+        s = medians(results[(tracer, t)], passes)
+        rows.append({"label": f"default scene {t} threads [{tracer}]", "kind": "threads",
+                     "variant": tracer, "threads": t, **{k: s[k] for k in passes}})
+    for r in rows:
+        one = next(x for x in rows if x["variant"] == r["variant"] and x["threads"] == 1)
+        for k in GRIDRT_PASSES + embree_passes():
+            if k in r and r[k] > 0:
+                r[f"speedup_{k}"] = one[k] / r[k]
+        shown = ", ".join(f"{k[:-3]} {r[k]:.2f} ({r[f'speedup_{k}']:.2f}x)"
+                          for k in (GRIDRT_PASSES if r["variant"] == "gridrt" else embree_passes())
+                          if f"speedup_{k}" in r)
+        print(f"threads {r['threads']:3d} [{r['variant']:21s}]: {shown}", flush=True)
     return rows
 
 
@@ -171,7 +224,9 @@ def chart_scaling(rows, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
+    threads = [r for r in rows if r.get("kind") == "threads"]
+    rows = [r for r in rows if r.get("kind") != "threads"]
+    fig, axes = plt.subplots(1, 4, figsize=(20, 4.5))
     sizes = sorted({(r["width"], r["height"]) for r in rows})
     for w, h in sizes:
         pts = sorted((r["triangles"], r["ns_per_ray"]) for r in rows if r["width"] == w)
@@ -193,8 +248,26 @@ def chart_scaling(rows, path):
                  marker="s", label=f"traversal lists ({big[0]}x{big[1]})")
     axes[2].set(xscale="log", yscale="log", xlabel="triangles", ylabel="ms",
                 title="grid build and list generation")
+    counts = sorted({r["threads"] for r in threads})
+    names = {"walk_ms": "list walk", "binning_ms": "binning", "bundling_ms": "bundling",
+             "kernel_ms": "PE kernels", "reduce_ms": "phase 2", "shade_ms": "shading",
+             "frame_ms": "frame", "trace_primary_ms": "camera rays",
+             "trace_secondary_ms": "reflection+refraction", "trace_shadow_ms": "shadow rays"}
+    for tracer, style in (("gridrt", "-"), ("embree 16-ray packets", ":")):
+        mine = sorted((r for r in threads if r["variant"] == tracer), key=lambda r: r["threads"])
+        passes = GRIDRT_PASSES if tracer == "gridrt" else embree_passes()
+        for k in passes:
+            if mine and all(f"speedup_{k}" in r for r in mine):
+                axes[3].plot([r["threads"] for r in mine], [r[f"speedup_{k}"] for r in mine],
+                             style, marker="o", label=f"{tracer}: {names.get(k, k)}",
+                             color=plt.cm.tab10(list(names).index(k) % 10),
+                             linewidth=2.5 if k == "frame_ms" else 1)
+    if counts:
+        axes[3].plot(counts, counts, color="grey", linewidth=0.5, label="ideal")
+    axes[3].set(xlabel="threads", ylabel="speed-up over 1 thread",
+                title="default Whitted frame: each pass against threads")
     for a in axes:
-        a.legend(fontsize=7)
+        a.legend(fontsize=6)
     fig.suptitle(machine_line(), fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
@@ -230,10 +303,10 @@ MEDIAN_KEYS = ("frame_ms", "fps", "lists_ms", "kernel_ms", "kernel_device_ms",
                "mrays_per_s") + LIST_PASSES + TRACE_KEYS
 
 
-def run_peer_whitted(args, frames, packet):
+def run_peer_whitted(args, frames, packet, threads=2):
     """embree_peer --whitted: gridrt's renderer with Embree tracing, its figures under the
     names gridrt's statistics use (trace_primary_ms, ...)."""
-    s = run_peer(args + ["--whitted"], frames, packet)
+    s = run_peer(args + ["--whitted"], frames, packet, threads=threads)
     for key, value in s.get("trace", {}).items():
         s["trace_" + key] = value
     return s
@@ -466,9 +539,9 @@ TARGETS = [
 EMBREE_VARIANTS = [("embree 1-ray", 1), ("embree 16-ray packets", 16)]
 
 
-def run_peer(args, frames, packet, extra=()):
+def run_peer(args, frames, packet, extra=(), threads=2):
     """embree_peer on a gridrt-style argument list (scene, --width, --height)."""
-    out = subprocess.run([EMBREE_PEER, *args, "--threads", "2", "--packet", str(packet),
+    out = subprocess.run([EMBREE_PEER, *args, "--threads", str(threads), "--packet", str(packet),
                           "--frames", str(frames), *extra],
                          check=True, capture_output=True, text=True).stdout
     return json.loads(out)
