@@ -126,20 +126,30 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     renderInBands(frame, win, 1, 1.0f, progress);
     // Only the output window's pixels are refined; the ring around it (film_window_) holds
     // the centres of their neighbours outside it.
-    std::vector<int> refine;
     auto differs = [&](int p, int q) {
       glm::vec3 d = glm::abs(radiance_[p] - radiance_[q]);
       return std::max({d.x, d.y, d.z}) > settings_.aa_threshold;
     };
+    // Each slice lists the pixels of its rows, and the lists follow one another in row
+    // order: the same list as one thread's.
     const PixelWindow& out = output_window_;
-    for (int y = out.y0 - win.y0; y < out.y1 - win.y0; ++y)
-      for (int x = out.x0 - win.x0, p = y * fw + x; x < out.x1 - win.x0; ++x, ++p)
-        if ((x > 0 && differs(p, p - 1)) || (x + 1 < fw && differs(p, p + 1)) ||
-            (y > 0 && differs(p, p - fw)) || (y + 1 < fh && differs(p, p + fw)))
-          refine.push_back(p);
+    const int slices = parallelSliceCount();
+    std::vector<std::vector<int>> slice_refine(slices);
+    parallelSlices(slices, [&](int me, int count) {
+      const auto [first, last] = sliceRange(size_t(out.height()), me, count);
+      for (int y = out.y0 - win.y0 + int(first); y < out.y0 - win.y0 + int(last); ++y)
+        for (int x = out.x0 - win.x0, p = y * fw + x; x < out.x1 - win.x0; ++x, ++p)
+          if ((x > 0 && differs(p, p - 1)) || (x + 1 < fw && differs(p, p + 1)) ||
+              (y > 0 && differs(p, p - fw)) || (y + 1 < fh && differs(p, p + fw)))
+            slice_refine[me].push_back(p);
+    });
+    std::vector<int> refine;
+    for (const std::vector<int>& part : slice_refine)
+      refine.insert(refine.end(), part.begin(), part.end());
     const int extra = std::max(1, settings_.aa_samples);
     const float keep = 1.0f / float(extra + 1);
-    for (int p : refine) radiance_[p] *= keep;  // the centre becomes one of extra+1 samples
+    // The centre becomes one of extra+1 samples (after every slice has read its neighbours).
+    parallelFor(size_t(0), refine.size(), [&](size_t k) { radiance_[refine[k]] *= keep; });
     frame.refined_pixels = refine.size();
     // The refined pixels in passes of at most max_pass_rays samples (at least one pixel).
     const size_t per_pass = std::max<size_t>(1, settings_.max_pass_rays / size_t(extra));
@@ -279,11 +289,18 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
     if (first) {
       frame.rays.primary += rays->size();
     } else {
-      for (const PathRay& path : *paths)
-        if (path.kind == RayKind::Reflection)
-          ++frame.rays.reflection;
-        else
-          ++frame.rays.refraction;
+      std::vector<uint64_t> slice_reflections(parallelSliceCount(), 0);
+      parallelSlices(int(slice_reflections.size()), [&](int me, int count) {
+        const auto [first, last] = sliceRange(paths->size(), me, count);
+        uint64_t reflections = 0;
+        for (size_t k = first; k < last; ++k)
+          reflections += (*paths)[k].kind == RayKind::Reflection;
+        slice_reflections[me] = reflections;
+      });
+      uint64_t reflections = 0;
+      for (uint64_t r : slice_reflections) reflections += r;
+      frame.rays.reflection += reflections;
+      frame.rays.refraction += paths->size() - reflections;
     }
     RayDiagnostics* diag = first && aov_pass && settings_.want_diagnostics ? &diagnostics : nullptr;
     std::vector<GrHit>& hits = generations_[depth].hits;
