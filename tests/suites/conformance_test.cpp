@@ -30,7 +30,7 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-class Conformance : public ::testing::Test {
+class ConformanceFixture : public ::testing::Test {
  protected:
   void SetUp() override {
     if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
@@ -71,7 +71,7 @@ class Conformance : public ::testing::Test {
       }
       dda.intersect(rays, HitMode::Closest, got, nullptr);
       EXPECT_EQ(test::hitMismatches(want, got, where + " dda"), 0u);
-      // Unless the test names its kernels (ConformanceKernels): the PE kernels of the layout
+      // Unless the test names its kernels (Conformance): the PE kernels of the layout
       // this device does not pick by itself (PeLayout), their batches copied across
       // (BatchTransfer), with the interrupt: the same hits on every path.
       GridRtIntersector other(*runtime_, grid, PeInterrupt::AllRays, otherChoices());
@@ -220,31 +220,30 @@ class Conformance : public ::testing::Test {
   }
 
   std::unique_ptr<ClRuntime> runtime_;
-  // The kernels a parameterised test (ConformanceKernels) names; none: the device's default
+  // The kernels a parameterised test (Conformance) names; none: the device's default
   // and, beside it, the other layout and transfer.
   std::optional<KernelOptions> kernels_;
 };
 
 // The targeted cases, small grids of few triangles a PE, run with each PE layout and each
 // batch transfer (the lane kernels too on a CPU device: fast on PEs this small). The
-// tests of whole scenes stay Conformance's own, which run the default kernels and the other
+// tests of whole scenes stay ConformanceFixture's, which run the default kernels and the other
 // layout with the other transfer where affordable: the lane kernels cull nothing and are
 // brute force on a scene's big PEs (minutes on a CPU), and each rule they check is checked
 // for all four here on the small grids.
-class ConformanceKernels : public Conformance,
-                           public ::testing::WithParamInterface<test::KernelChoice> {
+class Conformance : public ConformanceFixture,
+                    public ::testing::WithParamInterface<test::KernelChoice> {
  protected:
   void SetUp() override {
-    Conformance::SetUp();
+    ConformanceFixture::SetUp();
     if (IsSkipped()) return;
     kernels_ = GetParam().options();
   }
 };
 
-INSTANTIATE_TEST_SUITE_P(Kernels, ConformanceKernels, test::kernelChoices(),
-                         test::kernelChoiceName);
+INSTANTIATE_TEST_SUITE_P(Kernels, Conformance, test::kernelChoices(), test::kernelChoiceName);
 
-TEST_P(ConformanceKernels, BunnyRes4AtThePapersGridsMatchesBruteOnEveryPixel) {
+TEST_P(Conformance, BunnyRes4AtThePapersGridsMatchesBruteOnEveryPixel) {
   Scene scene = loadGltfFile(test::modelScene("bunny_res4.glb"));
   auto tris = prepareTriangles(scene);
   std::vector<GridSettings> grids;
@@ -266,7 +265,7 @@ TEST_P(ConformanceKernels, BunnyRes4AtThePapersGridsMatchesBruteOnEveryPixel) {
 // and the rays' tests add up to the batch's counted tests. The camera path reads the PEs'
 // hulls (pe_hulls.h), which rays over a PE's empty corners miss, so it is compared with
 // hulls equal to the boxes, and with its own hulls a ray's lanes are a subset of its list.
-TEST_P(ConformanceKernels, ListPathDiagnosticsAgreeWithTheCameraPathAndTheCounters) {
+TEST_P(Conformance, ListPathDiagnosticsAgreeWithTheCameraPathAndTheCounters) {
   Scene scene = loadGltfFile(test::modelScene("bunny_res4.glb"));
   auto tris = prepareTriangles(scene);
   const Bounds b = sceneBounds(scene);
@@ -335,8 +334,9 @@ TEST_P(ConformanceKernels, ListPathDiagnosticsAgreeWithTheCameraPathAndTheCounte
 }
 
 // Whole scenes: the default kernels and the other layout with the other transfer (below
-// kOtherLayoutMaxMeanPeTriangles a PE); ConformanceKernels holds each rule to all four.
-class SharedScenes : public Conformance, public ::testing::WithParamInterface<const char*> {};
+// kOtherLayoutMaxMeanPeTriangles a PE); Conformance holds each rule to all four.
+class SharedScenes : public ConformanceFixture,
+                     public ::testing::WithParamInterface<const char*> {};
 
 TEST_P(SharedScenes, EveryPixelMatchesBruteAtEveryGrid) {
   Scene scene = loadGltfFile(test::modelScene(GetParam()));
@@ -355,7 +355,8 @@ INSTANTIATE_TEST_SUITE_P(Conformance, SharedScenes,
                          });
 
 // Whole scenes, as SharedScenes.
-class ProjectScenes : public Conformance, public ::testing::WithParamInterface<const char*> {};
+class ProjectScenes : public ConformanceFixture,
+                      public ::testing::WithParamInterface<const char*> {};
 
 TEST_P(ProjectScenes, EveryPixelMatchesBruteAtEveryGrid) {
   Scene scene = loadGltfFile(test::sourcePath(std::string("scenes/") + GetParam()));
@@ -374,7 +375,7 @@ INSTANTIATE_TEST_SUITE_P(Conformance, ProjectScenes,
 // most strained: cameras inside the bunny (triangles straddle the camera plane, some nearly
 // edge-on, very close to the eye) and one grazing its surface, for both triangle tests.
 // Packet culling is the packet kernels' own (the lane kernels cull nothing): default kernels.
-TEST_F(Conformance, CameraPathWithPacketCullingFromInsideAndGrazing) {
+TEST_F(ConformanceFixture, CameraPathWithPacketCullingFromInsideAndGrazing) {
   Scene scene = loadGltfFile(test::modelScene("bunny_res2.glb"));
   const Bounds b = sceneBounds(scene);
   const glm::vec3 c = b.center(), e = b.extent();
@@ -419,7 +420,7 @@ TEST_F(Conformance, CameraPathWithPacketCullingFromInsideAndGrazing) {
 // with partial tiles, a field of view so wide that packet culling must stay off, and an
 // orthographic camera (no common eye: the plain version).
 // The host's ray generation and culling decision, whatever the kernels: default kernels.
-TEST_F(Conformance, CameraPathThatMakesItsRaysMatchesBrute) {
+TEST_F(ConformanceFixture, CameraPathThatMakesItsRaysMatchesBrute) {
   Scene scene = loadGltfFile(test::modelScene("bunny_res2.glb"));
   const Bounds b = sceneBounds(scene);
   const glm::vec3 c = b.center(), e = b.extent();
@@ -463,7 +464,7 @@ TEST_F(Conformance, CameraPathThatMakesItsRaysMatchesBrute) {
 }
 
 // A whole scene, as SharedScenes: the default kernels and the other layout and transfer.
-TEST_F(Conformance, BuiltInDefaultSceneMatchesBrute) {
+TEST_F(ConformanceFixture, BuiltInDefaultSceneMatchesBrute) {
   checkScene(makeDefaultScene(), "default scene", 320, 240);
 }
 
@@ -495,7 +496,7 @@ std::vector<GrRay> randomRays(const Bounds& b, size_t count, uint32_t seed) {
   return rays;
 }
 
-TEST_P(ConformanceKernels, RandomRaysInsideAndOutsideTheGridMatchBrute) {
+TEST_P(Conformance, RandomRaysInsideAndOutsideTheGridMatchBrute) {
   Scene scene = loadGltfFile(test::modelScene("bunny_res4.glb"));
   auto tris = prepareTriangles(scene);
   Bounds b = sceneBounds(scene);
@@ -506,7 +507,7 @@ TEST_P(ConformanceKernels, RandomRaysInsideAndOutsideTheGridMatchBrute) {
 // a ray through the grid, not the coordinates (kGridMarginRel), so at x = 10^4 the margin
 // stays 1e-5 of the model's diagonal (2e-6) while positions round by ulps of 1e-3. The
 // same random rays (inside, outside, axis-parallel) must still find every hit.
-TEST_P(ConformanceKernels, RandomRaysAroundAModelFarFromTheOriginMatchBrute) {
+TEST_P(Conformance, RandomRaysAroundAModelFarFromTheOriginMatchBrute) {
   for (float offset : {1e2f, 1e3f, 1e4f}) {
     Scene scene = loadGltfFile(test::modelScene("bunny_res4.glb"));
     for (glm::vec3& p : scene.positions) p += glm::vec3(offset, -0.5f * offset, 0.25f * offset);
@@ -533,7 +534,7 @@ TEST_P(ConformanceKernels, RandomRaysAroundAModelFarFromTheOriginMatchBrute) {
   }
 }
 
-TEST_P(ConformanceKernels, RandomRaysInTheClosedDefaultBoxMatchBrute) {
+TEST_P(Conformance, RandomRaysInTheClosedDefaultBoxMatchBrute) {
   Scene scene = makeDefaultScene();
   auto tris = prepareTriangles(scene);
   Bounds b = sceneBounds(scene);
@@ -567,7 +568,7 @@ GrRay ray(glm::vec3 o, glm::vec3 d) {
   return GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, kInf};
 }
 
-TEST_P(ConformanceKernels, BigTriangleWhoseHitLiesInALaterVoxelLosesToACloserSmallOne) {
+TEST_P(Conformance, BigTriangleWhoseHitLiesInALaterVoxelLosesToACloserSmallOne) {
   // A big slanted triangle overlaps the first voxel the ray enters, but the ray meets it
   // only in the last voxel; a small triangle in the middle voxel is closer. Without the
   // in-voxel rule the first PE would report the big triangle and win.
@@ -590,7 +591,7 @@ TEST_P(ConformanceKernels, BigTriangleWhoseHitLiesInALaterVoxelLosesToACloserSma
 // rule, but only with it does the PE of the voxel where the hit lies report it. Rays going
 // up meet the big slanted triangle in the third of four voxels; it overlaps the first one
 // too (a lower PE), which without the rule reports the same hit and is named the winner.
-TEST_P(ConformanceKernels, AHitIsWonByThePeOfTheVoxelItLiesIn) {
+TEST_P(Conformance, AHitIsWonByThePeOfTheVoxelItLiesIn) {
   std::vector<GrTriangle> tris = {tri({-1, -1, -4}, {4, -1, 0.5f}, {-1, 4, 0.5f}, 0)};
   Bounds b = boundsOf(tris);
   UniformGrid grid = buildUniformGrid(tris, b, dims(1, 1, 4));
@@ -617,7 +618,7 @@ TEST_P(ConformanceKernels, AHitIsWonByThePeOfTheVoxelItLiesIn) {
   }
 }
 
-TEST_P(ConformanceKernels, RaysThroughVoxelEdgesAndCornersAreNotMissed) {
+TEST_P(Conformance, RaysThroughVoxelEdgesAndCornersAreNotMissed) {
   // A 4x4x4 grid over [0,4]^3 with unit cells (the triangles pin the box); rays along
   // voxel edges and through voxel corners hit triangles sitting on those edges/corners.
   std::vector<GrTriangle> tris = {tri({0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}, 0),
@@ -637,7 +638,7 @@ TEST_P(ConformanceKernels, RaysThroughVoxelEdgesAndCornersAreNotMissed) {
   expectAllAgree(tris, b, rays, {dims(4, 4, 4), dims(2, 2, 2), dims(8, 8, 8)}, "edges");
 }
 
-TEST_P(ConformanceKernels, TriangleInAVoxelBoundaryPlaneIsFoundFromBothSides) {
+TEST_P(Conformance, TriangleInAVoxelBoundaryPlaneIsFoundFromBothSides) {
   // The plane z = 2 is a voxel boundary of the 4x4x4 grid over [0,4]^3.
   std::vector<GrTriangle> tris = {tri({0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}, 0),
                                   tri({4, 4, 4}, {3.99f, 4, 4}, {4, 3.99f, 4}, 1),
@@ -657,7 +658,7 @@ TEST_P(ConformanceKernels, TriangleInAVoxelBoundaryPlaneIsFoundFromBothSides) {
   for (const auto& h : hits) EXPECT_EQ(h.prim, 2);
 }
 
-TEST_P(ConformanceKernels, RayStartingOnAVoxelFaceAndInsideTheGrid) {
+TEST_P(Conformance, RayStartingOnAVoxelFaceAndInsideTheGrid) {
   std::vector<GrTriangle> tris = {tri({0, 0, 0}, {4, 0, 0}, {0, 4, 0}, 0),
                                   tri({0, 0, 4}, {4, 0, 4}, {0, 4, 4}, 1),
                                   tri({0, 0, 0}, {0, 4, 0}, {0, 0, 4}, 2)};
@@ -672,7 +673,7 @@ TEST_P(ConformanceKernels, RayStartingOnAVoxelFaceAndInsideTheGrid) {
   expectAllAgree(tris, b, rays, {dims(4, 4, 4), dims(3, 3, 3)}, "face");
 }
 
-TEST_P(ConformanceKernels, EveryTriangleInOneVoxel) {
+TEST_P(Conformance, EveryTriangleInOneVoxel) {
   std::vector<GrTriangle> tris;
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(0.0f, 0.1f);
@@ -714,7 +715,7 @@ size_t lightBundleMismatches(ClRuntime& runtime, const std::vector<GrTriangle>& 
 // than a cube cell (1.0 against cells of ~0.02 at the occluders) must still meet their
 // occluders: the voxels are grown by the rays' measured miss (kLightSlackFactor); with the
 // factor at 0 these rays fall outside the occluders' footprints and get through.
-TEST_P(ConformanceKernels, LightBundlesCoverRaysThatMissTheLight) {
+TEST_P(Conformance, LightBundlesCoverRaysThatMissTheLight) {
   const glm::vec3 light(0.0f, 2.0f, 0.0f);
   std::vector<GrTriangle> tris = {tri({-3, 0, -3}, {3, 0, -3}, {3, 0, 3}, 0),
                                   tri({-3, 0, -3}, {3, 0, 3}, {-3, 0, 3}, 1)};
@@ -736,7 +737,7 @@ TEST_P(ConformanceKernels, LightBundlesCoverRaysThatMissTheLight) {
 
 // A light on a grid vertex, with occluders in the eight voxels around it, close to the
 // light: no box there can be projected onto the cube, so each receives every ray.
-TEST_P(ConformanceKernels, LightBundlesWithTheLightOnAGridVertex) {
+TEST_P(Conformance, LightBundlesWithTheLightOnAGridVertex) {
   std::vector<GrTriangle> tris = {tri({-2, -2, -2}, {2, -2, -2}, {2, -2, 2}, 0),
                                   tri({-2, 2, 2}, {2, 2, 2}, {-2, 2, -2}, 1)};
   const glm::vec3 light(0.0f, 0.0f, 0.0f);  // a vertex of the 4x4x4 grid over [-2, 2]^3
@@ -764,7 +765,7 @@ TEST_P(ConformanceKernels, LightBundlesWithTheLightOnAGridVertex) {
 // neighbouring columns' outlines, so those PEs receive them, and only the slab test's rule
 // for a zero direction (inside the slab for every t or for none) keeps them out.
 // The host's pairs of the light bundles, for both layouts (the transfer moves no pairs).
-TEST_F(Conformance, LightBundlesKeepTheListsPairsForRaysAlongAGridAxis) {
+TEST_F(ConformanceFixture, LightBundlesKeepTheListsPairsForRaysAlongAGridAxis) {
   const int n = 8;
   std::vector<GrTriangle> lattice;
   for (int z = 0; z < n; ++z)
@@ -823,7 +824,7 @@ TEST_F(Conformance, LightBundlesKeepTheListsPairsForRaysAlongAGridAxis) {
 // (PEs of up to 52 triangles, through either path), it is less, but never less than one
 // test a hit. Culling is the packet kernels' own: they run here on any device.
 // The packet kernels' culling counts (the lane kernels cull nothing): packets, named.
-TEST_F(Conformance, TheKernelsCountTheTestsTheyRunAfterCulling) {
+TEST_F(ConformanceFixture, TheKernelsCountTheTestsTheyRunAfterCulling) {
   KernelOptions packets;
   packets.pe_layout = PeLayout::Packets;
   std::vector<GrTriangle> lattice;
@@ -891,7 +892,7 @@ TEST_F(Conformance, TheKernelsCountTheTestsTheyRunAfterCulling) {
   }
 }
 
-TEST_P(ConformanceKernels, EmptyGridMissesEverything) {
+TEST_P(Conformance, EmptyGridMissesEverything) {
   std::vector<GrTriangle> tris;
   Bounds b{glm::vec3(0), glm::vec3(1)};
   UniformGrid grid = buildUniformGrid(tris, b, dims(3, 3, 3));
@@ -906,7 +907,7 @@ TEST_P(ConformanceKernels, EmptyGridMissesEverything) {
   for (const auto& h : hits) EXPECT_LT(h.prim, 0);
 }
 
-TEST_P(ConformanceKernels, RaysParallelToEachAxis) {
+TEST_P(Conformance, RaysParallelToEachAxis) {
   Scene scene = makeDefaultScene();
   auto tris = prepareTriangles(scene);
   Bounds b = sceneBounds(scene);
@@ -960,7 +961,7 @@ CentreOfView centreOfView(const glm::vec3& target, float distance, float fov_deg
 // 0.01-0.1 degrees on a plane split by voxel boundaries, 1e3-1e4 from the world origin,
 // aimed at the corner where four voxels meet. A float projection of the voxels' outlines
 // lost 12-91 of these 6,400 pixels a view (camera_bundles.h, kCameraOutlineEpsilons).
-TEST_P(ConformanceKernels, NarrowViewsOfABoxFarFromTheOriginMatchBrute) {
+TEST_P(Conformance, NarrowViewsOfABoxFarFromTheOriginMatchBrute) {
   struct View {
     float shift, fov_degrees;
     int height;
@@ -984,7 +985,7 @@ TEST_P(ConformanceKernels, NarrowViewsOfABoxFarFromTheOriginMatchBrute) {
 // far more than a margin scaled by the scene's coordinates alone (~5e-5), and the list
 // and camera paths lost 1-3 of these 6,400 pixels a view. With the eye in the margin's
 // scale (GridSettings::ray_origins) they equal brute force.
-TEST_P(ConformanceKernels, ACameraFarFromASmallSceneMatchesBrute) {
+TEST_P(Conformance, ACameraFarFromASmallSceneMatchesBrute) {
   const std::vector<GrTriangle> tris = squareOverADeepBox(glm::vec3(0.0f));
   const Bounds b = boundsOf(tris);
   for (float fov_degrees : {0.01f, 0.1f, 1.0f}) {
