@@ -163,7 +163,7 @@ TEST(GltfBrdf, IsAppendixBsBrdfAtEveryAngleAndRoughness) {
                                         ? appendixBSimplified(base, metallic, roughness, dn, dv, dl)
                                         : appendixB(base, metallic, roughness, dn, dv, dl);
             for (int c = 0; c < 3; ++c)
-              EXPECT_NEAR(got[c], want[c], kAppendixBRelative * want[c] + 1e-7)
+              EXPECT_NEAR(got[c], want[c], kAppendixBRelative * want[c])
                   << "metallic " << metallic << " roughness " << roughness << " view " << theta_v
                   << " light " << theta_l << " " << phi << " channel " << c;
             ++checked;

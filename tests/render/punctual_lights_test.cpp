@@ -35,6 +35,8 @@ constexpr double kConeCosineError = 1e-6;
 // 1 - (d / range)^4 loses a few ulps of 1 when d nears the range; times the window's
 // slope 2 w that is the error near the range's edge.
 constexpr double kWindowError = 1e-6;
+// A unit direction (and a distance, relatively) in float against the double one: a few ulps.
+constexpr double kDirectionTolerance = 1e-6;
 
 // What the extension asks of a light at a point, in double.
 struct Expected {
@@ -191,9 +193,9 @@ TEST(PunctualLights, OneHitIrradianceIsTheExtensionsAtTheConesAndRangesEdges) {
     float distance = 0.0f;
     const glm::vec3 e = lightIrradiance(c.light, c.point, to, distance);
     expectIrradiance(want, e, "lightIrradiance, " + c.what);
-    for (int a = 0; a < 3; ++a) EXPECT_NEAR(to[a], want.to_light[a], 1e-6) << c.what;
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(to[a], want.to_light[a], kDirectionTolerance) << c.what;
     if (std::isfinite(want.distance))
-      EXPECT_NEAR(distance, want.distance, 1e-6 * want.distance) << c.what;
+      EXPECT_NEAR(distance, want.distance, kDirectionTolerance * want.distance) << c.what;
     else
       EXPECT_EQ(distance, INFINITY) << c.what;
     cut_off += want.irradiance == glm::dvec3(0.0);
@@ -231,10 +233,10 @@ TEST(PunctualLights, LanesIrradianceIsTheExtensionsAtTheConesAndRangesEdges) {
       const Expected want = expected(block[k]->light, block[k]->point);
       const std::string where = "computeLightLanes, " + block[k]->what;
       expectIrradiance(want, glm::vec3(out.ex[k], out.ey[k], out.ez[k]), where);
-      EXPECT_NEAR(out.lx[k], want.to_light.x, 1e-6) << where;
-      EXPECT_NEAR(out.ly[k], want.to_light.y, 1e-6) << where;
-      EXPECT_NEAR(out.lz[k], want.to_light.z, 1e-6) << where;
-      EXPECT_NEAR(out.cos_theta[k], 1.0, 1e-6) << where;
+      EXPECT_NEAR(out.lx[k], want.to_light.x, kDirectionTolerance) << where;
+      EXPECT_NEAR(out.ly[k], want.to_light.y, kDirectionTolerance) << where;
+      EXPECT_NEAR(out.lz[k], want.to_light.z, kDirectionTolerance) << where;
+      EXPECT_NEAR(out.cos_theta[k], 1.0, kDirectionTolerance) << where;
       // Lit where it gives light; at an edge (within the tolerance of 0) either is right.
       if (std::max({want.irradiance.x, want.irradiance.y, want.irradiance.z}) > want.tolerance ||
           want.tolerance == 0.0)
@@ -292,10 +294,9 @@ TEST(PunctualLights, AFloorUnderASpotIsLambertTimesTheExtensionsFalloff) {
         const size_t at = 3 * (size_t(j) * settings.width + i);
         for (int c = 0; c < 3; ++c) {
           const double radiance = grey.base_color[c] / kPiD * want.irradiance[c] * cos_theta;
-          // The pixel centre's point as the renderer's float ray finds it: 1e-6 away, times
-          // the falloff's slope, well inside the irradiance's own tolerance times 4.
-          const double tolerance = grey.base_color[c] / kPiD * cos_theta * 4.0 * want.tolerance;
-          EXPECT_NEAR(frame.film.rgb[at + c], radiance, tolerance + 1e-7)
+          // The irradiance's own tolerance, through the Lambert term.
+          const double tolerance = grey.base_color[c] / kPiD * cos_theta * want.tolerance;
+          EXPECT_NEAR(frame.film.rgb[at + c], radiance, tolerance)
               << (plain_lanes ? "plain lanes" : "one-hit loop") << ", pixel " << i << "," << j;
         }
         const double rho = std::hypot(x - spot.position.x, z - spot.position.z);
