@@ -46,11 +46,11 @@ struct Expected {
   double tolerance = 0.0;  // per channel, from the tolerances above
 };
 
-// The range window: the extension's recommended clamp(1 - (d / range)^4, 0, 1), squared as
-// Karis ("Real Shading in Unreal Engine 4", 2013) and Lagarde and de Rousiers ("Moving
-// Frostbite to PBR", 2014) square it so that it meets zero with zero slope (the extension
-// allows "some non-quadratic falloff near the edge of the range"). Zero at the range and
-// beyond, as the extension requires.
+// The range window. The extension recommends clamp(1 - (d / range)^4, 0, 1) itself; the
+// renderer squares it, as Karis ("Real Shading in Unreal Engine 4", 2013) and Lagarde and
+// de Rousiers ("Moving Frostbite to PBR", 2014) do, so that it meets zero with zero slope
+// (the extension allows "some non-quadratic falloff near the edge of the range"). Zero at
+// the range and beyond, as the extension requires.
 double rangeWindow(double distance, double range) {
   if (range <= 0.0) return 1.0;  // undefined range: the inverse square law alone
   const double r = distance / range;
