@@ -239,8 +239,9 @@ TEST(PunctualLights, LanesIrradianceIsTheExtensionsAtTheConesAndRangesEdges) {
       EXPECT_NEAR(out.cos_theta[k], 1.0, kDirectionTolerance) << where;
       // Lit where it gives light; at an edge (within the tolerance of 0) either is right.
       if (std::max({want.irradiance.x, want.irradiance.y, want.irradiance.z}) > want.tolerance ||
-          want.tolerance == 0.0)
+          want.tolerance == 0.0) {
         EXPECT_EQ(bool(out.lit[k]), want.irradiance != glm::dvec3(0.0)) << where;
+      }
       lit += out.lit[k];
     }
   }
