@@ -9,6 +9,7 @@
 #include "brute_intersector.h"
 #include "cl_runtime.h"
 #include "gridrt_intersector.h"
+#include "kernel_choices.h"
 #include "prepared_triangles.h"
 #include "test_support.h"
 #include "test_triangles.h"
@@ -30,7 +31,12 @@ std::vector<int> pesHolding(const UniformGrid& grid, int prim) {
   return pes;
 }
 
-TEST(PhaseTwo, ExactTieBetweenTrianglesInDifferentPesGoesToTheLowerIndex) {
+// With both PE layouts and both batch transfers.
+class PhaseTwo : public ::testing::TestWithParam<test::KernelChoice> {};
+
+INSTANTIATE_TEST_SUITE_P(Kernels, PhaseTwo, test::kernelChoices(), test::kernelChoiceName);
+
+TEST_P(PhaseTwo, ExactTieBetweenTrianglesInDifferentPesGoesToTheLowerIndex) {
   if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
   ClRuntime runtime("");
   // Two triangles 1e-3 apart on either side of the plane z = 0, the boundary of a 1x1x2
@@ -81,7 +87,7 @@ TEST(PhaseTwo, ExactTieBetweenTrianglesInDifferentPesGoesToTheLowerIndex) {
   std::vector<GrHit> want, got;
   brute.intersect(rays, HitMode::Closest, want, nullptr);
   for (PeInterrupt interrupt : {PeInterrupt::Off, PeInterrupt::AllRays}) {
-    GridRtIntersector gridrt(runtime, grid, interrupt);
+    GridRtIntersector gridrt(runtime, grid, interrupt, GetParam().options());
     RayDiagnostics diagnostics;
     gridrt.intersect(rays, HitMode::Closest, got, &diagnostics);
     EXPECT_EQ(test::hitMismatches(want, got, gridrt.name()), 0u);

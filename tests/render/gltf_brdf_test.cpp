@@ -97,6 +97,80 @@ TEST(GltfBrdf, TransmissionTakesTheDiffuseLobe) {
   EXPECT_NEAR(half.x - black.x, 0.5f * (opaque.x - black.x), kReciprocityTolerance);
 }
 
+// The glTF 2.0 specification's Appendix B, in double. The microfacet lobe V D: GGX's D
+// with chi+(n.h), Smith's separable G (each factor with chi+(h.x / n.x)) over 4 |n.l| |n.v|.
+double microfacet(double roughness, const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& l) {
+  const double a = roughness * roughness, a2 = a * a;
+  const glm::dvec3 h = glm::normalize(l + v);
+  const double nh = glm::dot(n, h), nl = glm::dot(n, l), nv = glm::dot(n, v);
+  const double dd = nh * nh * (a2 - 1.0) + 1.0;
+  const double d = nh > 0.0 ? a2 / (kPi * dd * dd) : 0.0;
+  auto g1 = [&](double nx, double hx) {
+    return hx / nx > 0.0
+               ? 2.0 * std::fabs(nx) / (std::fabs(nx) + std::sqrt(a2 + (1 - a2) * nx * nx))
+               : 0.0;
+  };
+  const double g = g1(nl, glm::dot(h, l)) * g1(nv, glm::dot(h, v));
+  return g / (4.0 * std::fabs(nl) * std::fabs(nv)) * d;
+}
+
+// Schlick's (1 - |v.h|)^5.
+double schlickWeight(const glm::dvec3& v, const glm::dvec3& l) {
+  return std::pow(1.0 - std::fabs(glm::dot(v, glm::normalize(l + v))), 5.0);
+}
+
+// Appendix B's layered material: conductor_fresnel(base, V D) for the metal,
+// fresnel_mix(ior 1.5, base / pi, V D) for the dielectric, mix(dielectric, metal, metallic).
+glm::dvec3 appendixB(const glm::dvec3& base, double metallic, double roughness, const glm::dvec3& n,
+                     const glm::dvec3& v, const glm::dvec3& l) {
+  const double specular = microfacet(roughness, n, v, l), schlick = schlickWeight(v, l);
+  const glm::dvec3 metal = specular * (base + (1.0 - base) * schlick);
+  const double f0 = std::pow((1.0 - 1.5) / (1.0 + 1.5), 2.0);  // 0.04
+  const double fr = f0 + (1.0 - f0) * schlick;
+  const glm::dvec3 dielectric = (1.0 - fr) * (base / kPi) + fr * glm::dvec3(specular);
+  return (1.0 - metallic) * dielectric + metallic * metal;
+}
+
+// Appendix B's single-lobe form for any metallic (its simplified implementation): c_diff =
+// mix(base, 0, metallic), f0 = mix(0.04, base, metallic), F = f0 + (1 - f0) schlick, f =
+// (1 - F) c_diff / pi + F V D. At metallic 0 and 1 it is the layered form.
+glm::dvec3 appendixBSimplified(const glm::dvec3& base, double metallic, double roughness,
+                               const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& l) {
+  const double specular = microfacet(roughness, n, v, l), schlick = schlickWeight(v, l);
+  const glm::dvec3 f0 = glm::dvec3(0.04) * (1.0 - metallic) + base * metallic;
+  const glm::dvec3 f = f0 + (1.0 - f0) * schlick;
+  return (1.0 - f) * (base * (1.0 - metallic)) / kPi + f * specular;
+}
+
+// The float BRDF against the double one: near the lobe's peak D's denominator (n.h)^2
+// (alpha^2 - 1) + 1 cancels to alpha^2, where float keeps 1e-7 / alpha^2 of it relatively
+// (2.5e-5 at roughness 0.3, the smoothest here).
+constexpr double kAppendixBRelative = 1e-4;
+
+TEST(GltfBrdf, IsAppendixBsBrdfAtEveryAngleAndRoughness) {
+  const glm::vec3 n(0, 0, 1);
+  const glm::dvec3 base(0.8, 0.5, 0.2);
+  size_t checked = 0;
+  for (const float metallic : {0.0f, 0.5f, 1.0f})
+    for (const float roughness : {0.3f, 0.6f, 1.0f})
+      for (const double theta_v : {0.0, 0.4, 1.0, 1.4})
+        for (const double theta_l : {0.1, 0.4, 0.9, 1.45})
+          for (const double phi : {0.0, 2.0, kPi}) {
+            const glm::vec3 v = direction(theta_v, 0.0), l = direction(theta_l, phi);
+            const glm::vec3 got = gltfBrdf(glm::vec3(base), metallic, roughness, n, v, l);
+            const glm::dvec3 dn(n), dv(v), dl(l);
+            const glm::dvec3 want = metallic == 0.5f
+                                        ? appendixBSimplified(base, metallic, roughness, dn, dv, dl)
+                                        : appendixB(base, metallic, roughness, dn, dv, dl);
+            for (int c = 0; c < 3; ++c)
+              EXPECT_NEAR(got[c], want[c], kAppendixBRelative * want[c])
+                  << "metallic " << metallic << " roughness " << roughness << " view " << theta_v
+                  << " light " << theta_l << " " << phi << " channel " << c;
+            ++checked;
+          }
+  EXPECT_EQ(checked, 3u * 3u * 4u * 4u * 3u);
+}
+
 TEST(GltfBrdf, AMirrorSmoothSurfaceStaysFiniteInTheMirrorDirection) {
   const glm::vec3 n(0, 0, 1), v = direction(0.4, 0.0), l = direction(0.4, kPi);
   const glm::vec3 f = gltfBrdf(glm::vec3(1.0f), 1.0f, 0.0f, n, v, l);

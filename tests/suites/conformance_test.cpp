@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <random>
 
 #include "adaptive_grid.h"
@@ -17,6 +18,7 @@
 #include "default_scene.h"
 #include "gltf_loader.h"
 #include "gridrt_intersector.h"
+#include "kernel_choices.h"
 #include "prepared_triangles.h"
 #include "segment_culling.h"
 #include "test_support.h"
@@ -28,7 +30,7 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-class Conformance : public ::testing::Test {
+class ConformanceFixture : public ::testing::Test {
  protected:
   void SetUp() override {
     if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
@@ -50,9 +52,14 @@ class Conformance : public ::testing::Test {
       UniformGrid grid = buildUniformGrid(tris, bounds, settings);
       std::string where = label + " grid " + std::to_string(grid.info.nx) + "x" +
                           std::to_string(grid.info.ny) + "x" + std::to_string(grid.info.nz);
-      GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
-      GridRtIntersector interrupt(*runtime_, grid, PeInterrupt::AllRays);
-      GridRtIntersector camera_interrupt(*runtime_, grid, PeInterrupt::CameraRays);
+      // The lane kernels cull nothing: on a grid of PEs this full they are brute force
+      // (seconds on a CPU device), and the packet kernels alone check it.
+      if (kernels_ && kernels_->pe_layout == PeLayout::Lanes && !otherLayoutAffordable(grid))
+        continue;
+      const KernelOptions options = kernels_ ? *kernels_ : KernelOptions{};
+      GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, options);
+      GridRtIntersector interrupt(*runtime_, grid, PeInterrupt::AllRays, options);
+      GridRtIntersector camera_interrupt(*runtime_, grid, PeInterrupt::CameraRays, options);
       DdaIntersector dda(*runtime_, grid);
       gridrt.intersect(rays, HitMode::Closest, got, nullptr);
       EXPECT_EQ(test::hitMismatches(want, got, where + " gridrt"), 0u);
@@ -68,12 +75,12 @@ class Conformance : public ::testing::Test {
       }
       dda.intersect(rays, HitMode::Closest, got, nullptr);
       EXPECT_EQ(test::hitMismatches(want, got, where + " dda"), 0u);
-      // The PE kernels of the layout this device does not pick by itself (PeLayout), their
-      // batches copied across (BatchTransfer), with the interrupt: the same hits on every
-      // path.
+      // Unless the test names its kernels (Conformance): the PE kernels of the layout
+      // this device does not pick by itself (PeLayout), their batches copied across
+      // (BatchTransfer), with the interrupt: the same hits on every path.
       GridRtIntersector other(*runtime_, grid, PeInterrupt::AllRays, otherChoices());
       std::vector<Intersector*> any_hit_checked = {&gridrt, &dda};
-      if (otherLayoutAffordable(grid)) {
+      if (!kernels_ && otherLayoutAffordable(grid)) {
         other.intersect(rays, HitMode::Closest, got, nullptr);
         EXPECT_EQ(test::hitMismatches(want, got, where + " other layout and transfer"), 0u);
         if (view) {
@@ -181,11 +188,14 @@ class Conformance : public ::testing::Test {
                             std::to_string(light.y) + ", " + std::to_string(light.z) + ") offset " +
                             std::to_string(offset) + " grid " + std::to_string(grid.info.nx) + "x" +
                             std::to_string(grid.info.ny) + "x" + std::to_string(grid.info.nz);
+        if (kernels_ && kernels_->pe_layout == PeLayout::Lanes && !otherLayoutAffordable(grid))
+          continue;  // as in expectAllAgree
         // As the renderer calls it: small batches fall back to the lists.
-        GridRtIntersector plain(*runtime_, grid, PeInterrupt::Off);
+        const KernelOptions options = kernels_ ? *kernels_ : KernelOptions{};
+        GridRtIntersector plain(*runtime_, grid, PeInterrupt::Off, options);
         plain.intersectTowardsPoint(light, rays, HitMode::Closest, got);
         EXPECT_EQ(test::hitMismatches(want, got, where + " towards the light"), 0u);
-        GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
+        GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, options);
         gridrt.forceLightBundles();
         gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
         EXPECT_EQ(test::hitMismatches(want, got, where + " light bundles"), 0u);
@@ -194,7 +204,7 @@ class Conformance : public ::testing::Test {
         for (size_t i = 0; i < rays.size(); ++i)
           differ += (got[i].prim >= 0) != (want[i].prim >= 0);
         EXPECT_EQ(differ, 0u) << where << " light bundles any-hit";
-        if (!otherLayoutAffordable(grid)) continue;
+        if (kernels_ || !otherLayoutAffordable(grid)) continue;
         GridRtIntersector other(*runtime_, grid, PeInterrupt::Off, otherChoices());
         other.forceLightBundles();
         other.intersectTowardsPoint(light, rays, HitMode::Closest, got);
@@ -216,9 +226,30 @@ class Conformance : public ::testing::Test {
   }
 
   std::unique_ptr<ClRuntime> runtime_;
+  // The kernels a parameterised test (Conformance) names; none: the device's default
+  // and, beside it, the other layout and transfer.
+  std::optional<KernelOptions> kernels_;
 };
 
-TEST_F(Conformance, BunnyRes4AtThePapersGridsMatchesBruteOnEveryPixel) {
+// The targeted cases, small grids of few triangles a PE, run with each PE layout and each
+// batch transfer (the lane kernels too on a CPU device: fast on PEs this small). The
+// tests of whole scenes stay ConformanceFixture's, which run the default kernels and the other
+// layout with the other transfer where affordable: the lane kernels cull nothing and are
+// brute force on a scene's big PEs (minutes on a CPU), and each rule they check is checked
+// for all four here on the small grids.
+class Conformance : public ConformanceFixture,
+                    public ::testing::WithParamInterface<test::KernelChoice> {
+ protected:
+  void SetUp() override {
+    ConformanceFixture::SetUp();
+    if (IsSkipped()) return;
+    kernels_ = GetParam().options();
+  }
+};
+
+INSTANTIATE_TEST_SUITE_P(Kernels, Conformance, test::kernelChoices(), test::kernelChoiceName);
+
+TEST_P(Conformance, BunnyRes4AtThePapersGridsMatchesBruteOnEveryPixel) {
   Scene scene = loadGltfFile(test::modelScene("bunny_res4.glb"));
   auto tris = prepareTriangles(scene);
   std::vector<GridSettings> grids;
@@ -240,7 +271,7 @@ TEST_F(Conformance, BunnyRes4AtThePapersGridsMatchesBruteOnEveryPixel) {
 // and the rays' tests add up to the batch's counted tests. The camera path reads the PEs'
 // hulls (pe_hulls.h), which rays over a PE's empty corners miss, so it is compared with
 // hulls equal to the boxes, and with its own hulls a ray's lanes are a subset of its list.
-TEST_F(Conformance, ListPathDiagnosticsAgreeWithTheCameraPathAndTheCounters) {
+TEST_P(Conformance, ListPathDiagnosticsAgreeWithTheCameraPathAndTheCounters) {
   Scene scene = loadGltfFile(test::modelScene("bunny_res4.glb"));
   auto tris = prepareTriangles(scene);
   const Bounds b = sceneBounds(scene);
@@ -261,7 +292,7 @@ TEST_F(Conformance, ListPathDiagnosticsAgreeWithTheCameraPathAndTheCounters) {
     return p;
   };
   {
-    GridRtIntersector hulls(*runtime_, grid, PeInterrupt::Off);
+    GridRtIntersector hulls(*runtime_, grid, PeInterrupt::Off, *kernels_);
     const BothPaths p = bothPaths(hulls);
     size_t fewer = 0;
     for (size_t r = 0; r < rays.size(); ++r) {
@@ -271,7 +302,7 @@ TEST_F(Conformance, ListPathDiagnosticsAgreeWithTheCameraPathAndTheCounters) {
     EXPECT_GT(fewer, 0u);
   }
   grid.pe_hull = grid.pe_box;
-  GridRtIntersector plain(*runtime_, grid, PeInterrupt::Off);
+  GridRtIntersector plain(*runtime_, grid, PeInterrupt::Off, *kernels_);
   const BothPaths p = bothPaths(plain);
   EXPECT_EQ(p.list.list_length, p.camera.list_length);
   EXPECT_EQ(p.list.tests, p.camera.tests);
@@ -293,7 +324,7 @@ TEST_F(Conformance, ListPathDiagnosticsAgreeWithTheCameraPathAndTheCounters) {
   RayDiagnostics all, skipping;
   std::vector<GrHit> all_hits, skipping_hits;
   plain.intersect(up, HitMode::Closest, all_hits, &all);
-  GridRtIntersector interrupt(*runtime_, grid, PeInterrupt::AllRays);
+  GridRtIntersector interrupt(*runtime_, grid, PeInterrupt::AllRays, *kernels_);
   interrupt.intersect(up, HitMode::Closest, skipping_hits, &skipping);
   EXPECT_EQ(test::hitMismatches(all_hits, skipping_hits, "interrupt"), 0u);
   EXPECT_EQ(skipping.winning_pe, all.winning_pe);
@@ -308,7 +339,10 @@ TEST_F(Conformance, ListPathDiagnosticsAgreeWithTheCameraPathAndTheCounters) {
   EXPECT_EQ(sum, interrupt.counters().tests);
 }
 
-class SharedScenes : public Conformance, public ::testing::WithParamInterface<const char*> {};
+// Whole scenes: the default kernels and the other layout with the other transfer (below
+// kOtherLayoutMaxMeanPeTriangles a PE); Conformance holds each rule to all four.
+class SharedScenes : public ConformanceFixture,
+                     public ::testing::WithParamInterface<const char*> {};
 
 TEST_P(SharedScenes, EveryPixelMatchesBruteAtEveryGrid) {
   Scene scene = loadGltfFile(test::modelScene(GetParam()));
@@ -326,7 +360,9 @@ INSTANTIATE_TEST_SUITE_P(Conformance, SharedScenes,
                            return n.substr(0, n.find('.'));
                          });
 
-class ProjectScenes : public Conformance, public ::testing::WithParamInterface<const char*> {};
+// Whole scenes, as SharedScenes.
+class ProjectScenes : public ConformanceFixture,
+                      public ::testing::WithParamInterface<const char*> {};
 
 TEST_P(ProjectScenes, EveryPixelMatchesBruteAtEveryGrid) {
   Scene scene = loadGltfFile(test::sourcePath(std::string("scenes/") + GetParam()));
@@ -344,7 +380,8 @@ INSTANTIATE_TEST_SUITE_P(Conformance, ProjectScenes,
 // Packet culling (host/gridrt/culling/packet_culling.h) on the camera path, where its argument is
 // most strained: cameras inside the bunny (triangles straddle the camera plane, some nearly
 // edge-on, very close to the eye) and one grazing its surface, for both triangle tests.
-TEST_F(Conformance, CameraPathWithPacketCullingFromInsideAndGrazing) {
+// Packet culling is the packet kernels' own (the lane kernels cull nothing): default kernels.
+TEST_F(ConformanceFixture, CameraPathWithPacketCullingFromInsideAndGrazing) {
   Scene scene = loadGltfFile(test::modelScene("bunny_res2.glb"));
   const Bounds b = sceneBounds(scene);
   const glm::vec3 c = b.center(), e = b.extent();
@@ -388,7 +425,8 @@ TEST_F(Conformance, CameraPathWithPacketCullingFromInsideAndGrazing) {
 // brute force: the same rays bit for bit and the same hits, for whole images and windows
 // with partial tiles, a field of view so wide that packet culling must stay off, and an
 // orthographic camera (no common eye: the plain version).
-TEST_F(Conformance, CameraPathThatMakesItsRaysMatchesBrute) {
+// The host's ray generation and culling decision, whatever the kernels: default kernels.
+TEST_F(ConformanceFixture, CameraPathThatMakesItsRaysMatchesBrute) {
   Scene scene = loadGltfFile(test::modelScene("bunny_res2.glb"));
   const Bounds b = sceneBounds(scene);
   const glm::vec3 c = b.center(), e = b.extent();
@@ -431,7 +469,8 @@ TEST_F(Conformance, CameraPathThatMakesItsRaysMatchesBrute) {
   EXPECT_GT(hits, size_t(w * h));
 }
 
-TEST_F(Conformance, BuiltInDefaultSceneMatchesBrute) {
+// A whole scene, as SharedScenes: the default kernels and the other layout and transfer.
+TEST_F(ConformanceFixture, BuiltInDefaultSceneMatchesBrute) {
   checkScene(makeDefaultScene(), "default scene", 320, 240);
 }
 
@@ -463,7 +502,7 @@ std::vector<GrRay> randomRays(const Bounds& b, size_t count, uint32_t seed) {
   return rays;
 }
 
-TEST_F(Conformance, RandomRaysInsideAndOutsideTheGridMatchBrute) {
+TEST_P(Conformance, RandomRaysInsideAndOutsideTheGridMatchBrute) {
   Scene scene = loadGltfFile(test::modelScene("bunny_res4.glb"));
   auto tris = prepareTriangles(scene);
   Bounds b = sceneBounds(scene);
@@ -474,7 +513,7 @@ TEST_F(Conformance, RandomRaysInsideAndOutsideTheGridMatchBrute) {
 // a ray through the grid, not the coordinates (kGridMarginRel), so at x = 10^4 the margin
 // stays 1e-5 of the model's diagonal (2e-6) while positions round by ulps of 1e-3. The
 // same random rays (inside, outside, axis-parallel) must still find every hit.
-TEST_F(Conformance, RandomRaysAroundAModelFarFromTheOriginMatchBrute) {
+TEST_P(Conformance, RandomRaysAroundAModelFarFromTheOriginMatchBrute) {
   for (float offset : {1e2f, 1e3f, 1e4f}) {
     Scene scene = loadGltfFile(test::modelScene("bunny_res4.glb"));
     for (glm::vec3& p : scene.positions) p += glm::vec3(offset, -0.5f * offset, 0.25f * offset);
@@ -493,7 +532,7 @@ TEST_F(Conformance, RandomRaysAroundAModelFarFromTheOriginMatchBrute) {
     BruteIntersector brute(*runtime_, tris);
     const UniformGrid grid = buildGrid(tris, b, adaptive);
     ASSERT_GE(grid.adaptive.depth, 1) << offset;
-    GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
+    GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, *kernels_);
     std::vector<GrHit> want, got;
     brute.intersect(rays, HitMode::Closest, want, nullptr);
     gridrt.intersect(rays, HitMode::Closest, got, nullptr);
@@ -501,7 +540,7 @@ TEST_F(Conformance, RandomRaysAroundAModelFarFromTheOriginMatchBrute) {
   }
 }
 
-TEST_F(Conformance, RandomRaysInTheClosedDefaultBoxMatchBrute) {
+TEST_P(Conformance, RandomRaysInTheClosedDefaultBoxMatchBrute) {
   Scene scene = makeDefaultScene();
   auto tris = prepareTriangles(scene);
   Bounds b = sceneBounds(scene);
@@ -535,7 +574,7 @@ GrRay ray(glm::vec3 o, glm::vec3 d) {
   return GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, kInf};
 }
 
-TEST_F(Conformance, BigTriangleWhoseHitLiesInALaterVoxelLosesToACloserSmallOne) {
+TEST_P(Conformance, BigTriangleWhoseHitLiesInALaterVoxelLosesToACloserSmallOne) {
   // A big slanted triangle overlaps the first voxel the ray enters, but the ray meets it
   // only in the last voxel; a small triangle in the middle voxel is closer. Without the
   // in-voxel rule the first PE would report the big triangle and win.
@@ -548,7 +587,7 @@ TEST_F(Conformance, BigTriangleWhoseHitLiesInALaterVoxelLosesToACloserSmallOne) 
                              ray({0.05f, 0.05f, 1.0f}, {0.01f, 0.0f, -1})};
   expectAllAgree(tris, b, rays, {dims(1, 1, 4), dims(3, 3, 3), dims(1, 1, 16)}, "big");
   UniformGrid grid = buildUniformGrid(tris, b, dims(1, 1, 4));
-  GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
+  GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, *kernels_);
   std::vector<GrHit> hits;
   gridrt.intersect(rays, HitMode::Closest, hits, nullptr);
   EXPECT_EQ(hits[0].prim, 1);
@@ -558,7 +597,7 @@ TEST_F(Conformance, BigTriangleWhoseHitLiesInALaterVoxelLosesToACloserSmallOne) 
 // rule, but only with it does the PE of the voxel where the hit lies report it. Rays going
 // up meet the big slanted triangle in the third of four voxels; it overlaps the first one
 // too (a lower PE), which without the rule reports the same hit and is named the winner.
-TEST_F(Conformance, AHitIsWonByThePeOfTheVoxelItLiesIn) {
+TEST_P(Conformance, AHitIsWonByThePeOfTheVoxelItLiesIn) {
   std::vector<GrTriangle> tris = {tri({-1, -1, -4}, {4, -1, 0.5f}, {-1, 4, 0.5f}, 0)};
   Bounds b = boundsOf(tris);
   UniformGrid grid = buildUniformGrid(tris, b, dims(1, 1, 4));
@@ -567,7 +606,7 @@ TEST_F(Conformance, AHitIsWonByThePeOfTheVoxelItLiesIn) {
     for (int i = 0; i < 8; ++i)
       rays.push_back(ray({-0.5f + 0.2f * i, -0.5f + 0.2f * j, -5.0f}, {0, 0, 1}));
   for (PeInterrupt interrupt : {PeInterrupt::Off, PeInterrupt::AllRays}) {
-    GridRtIntersector gridrt(*runtime_, grid, interrupt);
+    GridRtIntersector gridrt(*runtime_, grid, interrupt, *kernels_);
     std::vector<GrHit> hits;
     RayDiagnostics diagnostics;
     gridrt.intersect(rays, HitMode::Closest, hits, &diagnostics);
@@ -585,7 +624,7 @@ TEST_F(Conformance, AHitIsWonByThePeOfTheVoxelItLiesIn) {
   }
 }
 
-TEST_F(Conformance, RaysThroughVoxelEdgesAndCornersAreNotMissed) {
+TEST_P(Conformance, RaysThroughVoxelEdgesAndCornersAreNotMissed) {
   // A 4x4x4 grid over [0,4]^3 with unit cells (the triangles pin the box); rays along
   // voxel edges and through voxel corners hit triangles sitting on those edges/corners.
   std::vector<GrTriangle> tris = {tri({0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}, 0),
@@ -605,7 +644,7 @@ TEST_F(Conformance, RaysThroughVoxelEdgesAndCornersAreNotMissed) {
   expectAllAgree(tris, b, rays, {dims(4, 4, 4), dims(2, 2, 2), dims(8, 8, 8)}, "edges");
 }
 
-TEST_F(Conformance, TriangleInAVoxelBoundaryPlaneIsFoundFromBothSides) {
+TEST_P(Conformance, TriangleInAVoxelBoundaryPlaneIsFoundFromBothSides) {
   // The plane z = 2 is a voxel boundary of the 4x4x4 grid over [0,4]^3.
   std::vector<GrTriangle> tris = {tri({0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}, 0),
                                   tri({4, 4, 4}, {3.99f, 4, 4}, {4, 3.99f, 4}, 1),
@@ -619,13 +658,13 @@ TEST_F(Conformance, TriangleInAVoxelBoundaryPlaneIsFoundFromBothSides) {
   }
   expectAllAgree(tris, b, rays, {dims(4, 4, 4), dims(1, 1, 2), dims(8, 8, 8)}, "plane");
   UniformGrid grid = buildUniformGrid(tris, b, dims(4, 4, 4));
-  GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
+  GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, *kernels_);
   std::vector<GrHit> hits;
   gridrt.intersect(rays, HitMode::Closest, hits, nullptr);
   for (const auto& h : hits) EXPECT_EQ(h.prim, 2);
 }
 
-TEST_F(Conformance, RayStartingOnAVoxelFaceAndInsideTheGrid) {
+TEST_P(Conformance, RayStartingOnAVoxelFaceAndInsideTheGrid) {
   std::vector<GrTriangle> tris = {tri({0, 0, 0}, {4, 0, 0}, {0, 4, 0}, 0),
                                   tri({0, 0, 4}, {4, 0, 4}, {0, 4, 4}, 1),
                                   tri({0, 0, 0}, {0, 4, 0}, {0, 0, 4}, 2)};
@@ -640,7 +679,7 @@ TEST_F(Conformance, RayStartingOnAVoxelFaceAndInsideTheGrid) {
   expectAllAgree(tris, b, rays, {dims(4, 4, 4), dims(3, 3, 3)}, "face");
 }
 
-TEST_F(Conformance, EveryTriangleInOneVoxel) {
+TEST_P(Conformance, EveryTriangleInOneVoxel) {
   std::vector<GrTriangle> tris;
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(0.0f, 0.1f);
@@ -661,7 +700,7 @@ TEST_F(Conformance, EveryTriangleInOneVoxel) {
 // or the case tests nothing.
 size_t lightBundleMismatches(ClRuntime& runtime, const std::vector<GrTriangle>& tris,
                              const std::vector<GrRay>& rays, glm::vec3 light, glm::ivec3 dims,
-                             size_t blocked) {
+                             size_t blocked, const KernelOptions& options) {
   BruteIntersector brute(runtime, tris);
   std::vector<GrHit> want, got;
   brute.intersect(rays, HitMode::Closest, want, nullptr);
@@ -672,7 +711,7 @@ size_t lightBundleMismatches(ClRuntime& runtime, const std::vector<GrTriangle>& 
   settings.automatic = false;
   settings.dims = dims;
   UniformGrid grid = buildUniformGrid(tris, boundsOf(tris), settings);
-  GridRtIntersector gridrt(runtime, grid, PeInterrupt::Off);
+  GridRtIntersector gridrt(runtime, grid, PeInterrupt::Off, options);
   gridrt.forceLightBundles();
   gridrt.intersectTowardsPoint(light, rays, HitMode::Closest, got);
   return test::hitMismatches(want, got, "light bundles");
@@ -682,7 +721,7 @@ size_t lightBundleMismatches(ClRuntime& runtime, const std::vector<GrTriangle>& 
 // than a cube cell (1.0 against cells of ~0.02 at the occluders) must still meet their
 // occluders: the voxels are grown by the rays' measured miss (kLightSlackFactor); with the
 // factor at 0 these rays fall outside the occluders' footprints and get through.
-TEST_F(Conformance, LightBundlesCoverRaysThatMissTheLight) {
+TEST_P(Conformance, LightBundlesCoverRaysThatMissTheLight) {
   const glm::vec3 light(0.0f, 2.0f, 0.0f);
   std::vector<GrTriangle> tris = {tri({-3, 0, -3}, {3, 0, -3}, {3, 0, 3}, 0),
                                   tri({-3, 0, -3}, {3, 0, 3}, {-3, 0, 3}, 1)};
@@ -698,12 +737,13 @@ TEST_F(Conformance, LightBundlesCoverRaysThatMissTheLight) {
                        c + glm::vec3(0, 0, 0.01f), int(tris.size())));
     rays.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, glm::length(light - p)});
   }
-  EXPECT_EQ(lightBundleMismatches(*runtime_, tris, rays, light, {12, 4, 12}, rays.size()), 0u);
+  EXPECT_EQ(
+      lightBundleMismatches(*runtime_, tris, rays, light, {12, 4, 12}, rays.size(), *kernels_), 0u);
 }
 
 // A light on a grid vertex, with occluders in the eight voxels around it, close to the
 // light: no box there can be projected onto the cube, so each receives every ray.
-TEST_F(Conformance, LightBundlesWithTheLightOnAGridVertex) {
+TEST_P(Conformance, LightBundlesWithTheLightOnAGridVertex) {
   std::vector<GrTriangle> tris = {tri({-2, -2, -2}, {2, -2, -2}, {2, -2, 2}, 0),
                                   tri({-2, 2, 2}, {2, 2, 2}, {-2, 2, -2}, 1)};
   const glm::vec3 light(0.0f, 0.0f, 0.0f);  // a vertex of the 4x4x4 grid over [-2, 2]^3
@@ -720,7 +760,7 @@ TEST_F(Conformance, LightBundlesWithTheLightOnAGridVertex) {
     glm::vec3 d = glm::normalize(light - o);
     rays.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, glm::length(light - o)});
   }
-  EXPECT_EQ(lightBundleMismatches(*runtime_, tris, rays, light, {4, 4, 4}, 50), 0u);
+  EXPECT_EQ(lightBundleMismatches(*runtime_, tris, rays, light, {4, 4, 4}, 50, *kernels_), 0u);
 }
 
 // The light bundles hand a PE every ray whose line may pass the part of its voxel its
@@ -730,7 +770,8 @@ TEST_F(Conformance, LightBundlesWithTheLightOnAGridVertex) {
 // inside a column of voxels, 1 % of a voxel from the next: their cube cells overlap the
 // neighbouring columns' outlines, so those PEs receive them, and only the slab test's rule
 // for a zero direction (inside the slab for every t or for none) keeps them out.
-TEST_F(Conformance, LightBundlesKeepTheListsPairsForRaysAlongAGridAxis) {
+// The host's pairs of the light bundles, for both layouts (the transfer moves no pairs).
+TEST_F(ConformanceFixture, LightBundlesKeepTheListsPairsForRaysAlongAGridAxis) {
   const int n = 8;
   std::vector<GrTriangle> lattice;
   for (int z = 0; z < n; ++z)
@@ -788,7 +829,8 @@ TEST_F(Conformance, LightBundlesKeepTheListsPairsForRaysAlongAGridAxis) {
 // culling works on those PEs, and packet and segment culling on camera rays on bunny_res4
 // (PEs of up to 52 triangles, through either path), it is less, but never less than one
 // test a hit. Culling is the packet kernels' own: they run here on any device.
-TEST_F(Conformance, TheKernelsCountTheTestsTheyRunAfterCulling) {
+// The packet kernels' culling counts (the lane kernels cull nothing): packets, named.
+TEST_F(ConformanceFixture, TheKernelsCountTheTestsTheyRunAfterCulling) {
   KernelOptions packets;
   packets.pe_layout = PeLayout::Packets;
   std::vector<GrTriangle> lattice;
@@ -856,12 +898,12 @@ TEST_F(Conformance, TheKernelsCountTheTestsTheyRunAfterCulling) {
   }
 }
 
-TEST_F(Conformance, EmptyGridMissesEverything) {
+TEST_P(Conformance, EmptyGridMissesEverything) {
   std::vector<GrTriangle> tris;
   Bounds b{glm::vec3(0), glm::vec3(1)};
   UniformGrid grid = buildUniformGrid(tris, b, dims(3, 3, 3));
   EXPECT_EQ(grid.peCount(), 0);
-  GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
+  GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, *kernels_);
   DdaIntersector dda(*runtime_, grid);
   std::vector<GrRay> rays = randomRays(b, 100, 9);
   std::vector<GrHit> hits;
@@ -871,7 +913,7 @@ TEST_F(Conformance, EmptyGridMissesEverything) {
   for (const auto& h : hits) EXPECT_LT(h.prim, 0);
 }
 
-TEST_F(Conformance, RaysParallelToEachAxis) {
+TEST_P(Conformance, RaysParallelToEachAxis) {
   Scene scene = makeDefaultScene();
   auto tris = prepareTriangles(scene);
   Bounds b = sceneBounds(scene);
@@ -925,7 +967,7 @@ CentreOfView centreOfView(const glm::vec3& target, float distance, float fov_deg
 // 0.01-0.1 degrees on a plane split by voxel boundaries, 1e3-1e4 from the world origin,
 // aimed at the corner where four voxels meet. A float projection of the voxels' outlines
 // lost 12-91 of these 6,400 pixels a view (camera_bundles.h, kCameraOutlineEpsilons).
-TEST_F(Conformance, NarrowViewsOfABoxFarFromTheOriginMatchBrute) {
+TEST_P(Conformance, NarrowViewsOfABoxFarFromTheOriginMatchBrute) {
   struct View {
     float shift, fov_degrees;
     int height;
@@ -949,7 +991,7 @@ TEST_F(Conformance, NarrowViewsOfABoxFarFromTheOriginMatchBrute) {
 // far more than a margin scaled by the scene's coordinates alone (~5e-5), and the list
 // and camera paths lost 1-3 of these 6,400 pixels a view. With the eye in the margin's
 // scale (GridSettings::ray_origins) they equal brute force.
-TEST_F(Conformance, ACameraFarFromASmallSceneMatchesBrute) {
+TEST_P(Conformance, ACameraFarFromASmallSceneMatchesBrute) {
   const std::vector<GrTriangle> tris = squareOverADeepBox(glm::vec3(0.0f));
   const Bounds b = boundsOf(tris);
   for (float fov_degrees : {0.01f, 0.1f, 1.0f}) {

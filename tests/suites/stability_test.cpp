@@ -16,6 +16,7 @@
 #include "default_scene.h"
 #include "gltf_loader.h"
 #include "gridrt_intersector.h"
+#include "kernel_choices.h"
 #include "prepared_triangles.h"
 #include "reference_intersector.h"
 #include "renderer.h"
@@ -50,7 +51,7 @@ class Stability : public ::testing::Test {
 
   // brute (MT and watertight), gridrt and dda on a 16^3 grid, and the double reference.
   Agreement compare(const Scene& scene, const std::vector<GrRay>& rays, bool watertight) {
-    KernelOptions ko{watertight};
+    const KernelOptions ko = choice_.options(watertight);
     auto tris = prepareTriangles(scene, ko);
     BruteIntersector brute(*runtime_, tris, ko);
     GridSettings gs;
@@ -85,11 +86,25 @@ class Stability : public ::testing::Test {
   }
 
   std::unique_ptr<ClRuntime> runtime_;
+  // The PE kernels' layout and batch transfer of GridRT here (StabilityKernels names them).
+  test::KernelChoice choice_{PeLayout::Auto, BatchTransfer::Map};
 };
+
+// The intersection cases, each with both PE layouts and both batch transfers.
+class StabilityKernels : public Stability,
+                         public ::testing::WithParamInterface<test::KernelChoice> {
+ protected:
+  void SetUp() override {
+    Stability::SetUp();
+    choice_ = GetParam();
+  }
+};
+
+INSTANTIATE_TEST_SUITE_P(Kernels, StabilityKernels, test::kernelChoices(), test::kernelChoiceName);
 
 // Grazing: rays at 1e-1 .. 1e-6 rad to a large triangle, aimed at interior points well
 // inside it. The hit is never lost, but t's error grows like 1/sin(angle): recorded.
-TEST_F(Stability, GrazingRaysHitTheSameTriangleAsTheReference) {
+TEST_P(StabilityKernels, GrazingRaysHitTheSameTriangleAsTheReference) {
   Scene scene =
       sceneOfTriangles({{glm::vec3(-4, 0.5f, -4), glm::vec3(4, 0.5f, -4), glm::vec3(0, 0.5f, 4)},
                         {glm::vec3(-1, 3, -1), glm::vec3(1, 3, -1), glm::vec3(0, 3, 1)}});
@@ -119,7 +134,7 @@ TEST_F(Stability, GrazingRaysHitTheSameTriangleAsTheReference) {
 // Tiny (1e-7) and needle (1 x 1e-7) triangles. Near their own scale they are hit like
 // any other; seen from distance 1, o - v0 rounds by ~1e-7, the size of the triangle, and
 // float answers differ from double: recorded, not asserted.
-TEST_F(Stability, TinyAndNeedleTrianglesAgreeWithBruteAndNearbyWithTheReference) {
+TEST_P(StabilityKernels, TinyAndNeedleTrianglesAgreeWithBruteAndNearbyWithTheReference) {
   std::vector<std::array<glm::vec3, 3>> tris;
   for (int i = 0; i < 8; ++i) {
     glm::vec3 c(1e-6f * float(i), 2e-6f, -1e-6f);
@@ -149,7 +164,7 @@ TEST_F(Stability, TinyAndNeedleTrianglesAgreeWithBruteAndNearbyWithTheReference)
 
 // One triangle spanning the whole 16^3 grid among small ones: listed in hundreds of
 // voxels, its hit must win only in the voxel where it lies (same answers as brute).
-TEST_F(Stability, ATriangleFarLargerThanAVoxelMatchesBrute) {
+TEST_P(StabilityKernels, ATriangleFarLargerThanAVoxelMatchesBrute) {
   std::vector<std::array<glm::vec3, 3>> tris = {
       {glm::vec3(-10, -10, -9), glm::vec3(10, -10, 9), glm::vec3(0, 10, 0)}};
   std::mt19937 rng(5);
@@ -178,7 +193,7 @@ TEST_F(Stability, ATriangleFarLargerThanAVoxelMatchesBrute) {
 // slivers: the grid builder must not crash, the watertight test never hits a
 // repeated-vertex triangle and its grid answers equal brute force. Slivers whose
 // rounded vertices are not exactly collinear are real (thin) triangles: counted only.
-TEST_F(Stability, DegenerateTrianglesAreNeverHit) {
+TEST_P(StabilityKernels, DegenerateTrianglesAreNeverHit) {
   glm::vec3 a(0.3f, 0.2f, 0.1f), b(0.7f, 0.9f, -0.4f);
   std::vector<std::array<glm::vec3, 3>> tris = {
       {a, a, b},
@@ -202,7 +217,7 @@ TEST_F(Stability, DegenerateTrianglesAreNeverHit) {
     auto tri_data = prepareTriangles(scene, KernelOptions{wt});
     UniformGrid grid = buildUniformGrid(tri_data, sceneBounds(scene), GridSettings{});
     BruteIntersector brute(*runtime_, tri_data, KernelOptions{wt});
-    GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, KernelOptions{wt});
+    GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, choice_.options(wt));
     std::vector<GrHit> h, g;
     brute.intersect(rays, HitMode::Closest, h, nullptr);
     gridrt.intersect(rays, HitMode::Closest, g, nullptr);
@@ -230,7 +245,7 @@ TEST_F(Stability, DegenerateTrianglesAreNeverHit) {
 // NaN/Inf coordinates: the loader drops such triangles and counts them, so the grid
 // builder and the kernels never see one (a NaN vertex would make the triangle's box
 // NaN and its voxel range undefined).
-TEST_F(Stability, LoaderDropsNanAndInfTrianglesSoTheGridNeverSeesThem) {
+TEST_P(StabilityKernels, LoaderDropsNanAndInfTrianglesSoTheGridNeverSeesThem) {
   // Three triangles; vertex 4 is NaN, vertex 7 is +Inf. Positions as raw floats, base64.
   float pos[27] = {0, 0, 0, 1, 0, 0, 0, 1,        0, 0, 0, 1, NAN, 0,
                    1, 0, 1, 1, 0, 0, 2, INFINITY, 0, 2, 0, 1, 2};
@@ -261,7 +276,7 @@ TEST_F(Stability, LoaderDropsNanAndInfTrianglesSoTheGridNeverSeesThem) {
   UniformGrid grid = buildUniformGrid(tris, sceneBounds(s), GridSettings{});
   EXPECT_GE(grid.peCount(), 1);
   // NaN and Inf rays: no crash, no hit.
-  GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off);
+  GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, choice_.options());
   std::vector<GrRay> rays = {{NAN, 0, 1, 0, 0, 0, -1, kInf},
                              {0.2f, 0.2f, 1, 0, NAN, 0, -1, kInf},
                              {0.2f, 0.2f, kInf, 0, 0, 0, -1, kInf}};

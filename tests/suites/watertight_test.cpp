@@ -20,6 +20,7 @@
 #include "dda_intersector.h"
 #include "gltf_loader.h"
 #include "gridrt_intersector.h"
+#include "kernel_choices.h"
 #include "moller_trumbore.h"
 #include "prepared_triangles.h"
 #include "reference_intersector.h"
@@ -318,7 +319,14 @@ TEST_F(Watertight, RaysFromInsideTheSphereAlwaysHit) {
   EXPECT_EQ(misses_wt, 0u);
 }
 
-TEST_F(Watertight, GridIntersectorsAgreeWithBruteOnEdgeAndVertexRays) {
+// The watertight test on the grid, with both PE layouts (the packets' 16-lane test and the
+// lanes' scalar one) and both batch transfers.
+class WatertightKernels : public Watertight,
+                          public ::testing::WithParamInterface<test::KernelChoice> {};
+
+INSTANTIATE_TEST_SUITE_P(Kernels, WatertightKernels, test::kernelChoices(), test::kernelChoiceName);
+
+TEST_P(WatertightKernels, GridIntersectorsAgreeWithBruteOnEdgeAndVertexRays) {
   // The grid is conservative for the watertight test too: same prim, same t bit for bit.
   IndexedMesh mesh = makeIcosphere(3, 1.3, {0.37, -0.21, 0.13});
   Scene scene = sceneOf(mesh);
@@ -336,23 +344,17 @@ TEST_F(Watertight, GridIntersectorsAgreeWithBruteOnEdgeAndVertexRays) {
     s.automatic = false;
     s.dims = {n, n, n};
     UniformGrid grid = buildUniformGrid(tris, sceneBounds(scene), s);
-    // Both PE kernel layouts (PeLayout): the packets' 16-lane test and the lanes' scalar one.
-    for (PeLayout layout : {PeLayout::Packets, PeLayout::Lanes}) {
-      KernelOptions options = watertight;
-      options.pe_layout = layout;
-      GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, options);
-      gridrt.intersect(rays, HitMode::Closest, got, nullptr);
-      EXPECT_EQ(test::hitMismatches(want, got,
-                                    "gridrt " + std::to_string(n) +
-                                        (layout == PeLayout::Lanes ? " lanes" : " packets")),
-                0u);
-    }
+    GridRtIntersector gridrt(*runtime_, grid, PeInterrupt::Off, GetParam().options(true));
+    gridrt.intersect(rays, HitMode::Closest, got, nullptr);
+    EXPECT_EQ(test::hitMismatches(want, got, "gridrt " + std::to_string(n)), 0u);
     DdaIntersector dda(*runtime_, grid, watertight);
     dda.intersect(rays, HitMode::Closest, got, nullptr);
     EXPECT_EQ(test::hitMismatches(want, got, "dda " + std::to_string(n)), 0u);
   }
 }
 
+// The 69k-triangle bunny: the default kernels (WatertightKernels holds every layout and
+// transfer to brute force on the sphere's seams).
 TEST_F(Watertight, BunnyEdgesAndVerticesLeakOnlyWithMollerTrumbore) {
   Scene scene = loadGltfFile(test::modelScene("bunny.glb"));
   IndexedMesh mesh = indexScene(scene);

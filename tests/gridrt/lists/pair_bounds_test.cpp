@@ -10,6 +10,7 @@
 #include "brute_intersector.h"
 #include "cl_runtime.h"
 #include "gridrt_intersector.h"
+#include "kernel_choices.h"
 #include "prepared_triangles.h"
 #include "test_support.h"
 #include "test_triangles.h"
@@ -56,7 +57,12 @@ TEST(PairBounds, OneIntervalTestsLikeTheFourBounds) {
   EXPECT_TRUE(std::isnan(hi));
 }
 
-TEST(PairBounds, HitsOnTheRaysEndsAreOutsideItAndJustInsideThemAreHits) {
+// With both PE layouts and both batch transfers.
+class PairBounds : public ::testing::TestWithParam<test::KernelChoice> {};
+
+INSTANTIATE_TEST_SUITE_P(Kernels, PairBounds, test::kernelChoices(), test::kernelChoiceName);
+
+TEST_P(PairBounds, HitsOnTheRaysEndsAreOutsideItAndJustInsideThemAreHits) {
   if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
   ClRuntime runtime("");
   // A square at z = 0.3 in the upper voxel of a 1x1x2 grid over z in [-1, 1], and rays
@@ -102,7 +108,7 @@ TEST(PairBounds, HitsOnTheRaysEndsAreOutsideItAndJustInsideThemAreHits) {
   std::vector<GrHit> want, got;
   brute.intersect(rays, HitMode::Closest, want, nullptr);
   for (PeInterrupt interrupt : {PeInterrupt::Off, PeInterrupt::AllRays}) {
-    GridRtIntersector gridrt(runtime, grid, interrupt);
+    GridRtIntersector gridrt(runtime, grid, interrupt, GetParam().options());
     gridrt.intersect(rays, HitMode::Closest, got, nullptr);
     ASSERT_EQ(got.size(), rays.size());
     EXPECT_EQ(test::hitMismatches(want, got, gridrt.name()), 0u);
@@ -114,7 +120,7 @@ TEST(PairBounds, HitsOnTheRaysEndsAreOutsideItAndJustInsideThemAreHits) {
 
 // Any-hit rays stop testing once every lane has a hit: one on the ray's tmax must not count,
 // or a ray ending exactly on a far triangle would stop before a nearer one and miss.
-TEST(PairBounds, AnyHitRaysEndingOnAFarHitStillFindTheNearOne) {
+TEST_P(PairBounds, AnyHitRaysEndingOnAFarHitStillFindTheNearOne) {
   if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
   ClRuntime runtime("");
   auto square = [&](float z, int prim) {
@@ -141,7 +147,7 @@ TEST(PairBounds, AnyHitRaysEndingOnAFarHitStillFindTheNearOne) {
         rays.push_back(GrRay{o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, far_t});
       }
     std::vector<GrHit> got;
-    GridRtIntersector gridrt(runtime, grid, PeInterrupt::Off);
+    GridRtIntersector gridrt(runtime, grid, PeInterrupt::Off, GetParam().options());
     gridrt.intersect(rays, HitMode::AnyHit, got, nullptr);
     ASSERT_EQ(got.size(), rays.size());
     size_t missed = 0;
