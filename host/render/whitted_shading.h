@@ -32,8 +32,11 @@ SurfaceTerms surfaceTerms(const Material& m, const glm::vec3& base_color, float 
 
 // Irradiance (per unit area facing the light) that `light` delivers at `p`, the unit
 // direction towards the light and its distance (infinite for a directional light).
-// Point/spot: intensity / d^2 (candela), spot cone smooth falloff and range window as
-// KHR_lights_punctual recommends; directional: intensity (lux). The one-hit definition:
+// Point/spot: intensity / d^2 (candela), the spot cone's smooth falloff as
+// KHR_lights_punctual recommends, and a range window that goes smoothly to zero at the
+// range: the square of the extension's recommended clamp(1 - (d/range)^4, 0, 1), as Unreal
+// and Frostbite use it (the extension leaves the window to the renderer, asking only that
+// it reach zero at the range); directional: intensity (lux). The one-hit definition:
 // the shading loop computes it 16 hits at a time (computeLightLanes, hit_surfaces.h),
 // bit for bit equal (tests/render/hit_surfaces_test.cpp).
 glm::vec3 lightIrradiance(const Light& light, const glm::vec3& p, glm::vec3& to_light,
