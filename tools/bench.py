@@ -7,6 +7,7 @@ their own columns (load_ms, compile_ms, build_ms).
 
     .venv/bin/python tools/bench.py paper     # the paper's experiment (bunny_res4, 320x240)
     .venv/bin/python tools/bench.py scaling   # triangles, image size, and every pass against threads
+    .venv/bin/python tools/bench.py waves     # the Whitted frame by pass against its wave size (--wave-rays)
     .venv/bin/python tools/bench.py whitted   # full Whitted frames with shadows (median of 5 processes),
                                               # and the default and bunny frames with Embree tracing beside gridrt
     .venv/bin/python tools/bench.py targets   # the four speed targets, Embree beside
@@ -268,6 +269,49 @@ def chart_scaling(rows, path):
                 title="default Whitted frame: each pass against threads")
     for a in axes:
         a.legend(fontsize=6)
+    fig.suptitle(machine_line(), fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+# Wave sizes of bench.py waves: one wave for the whole 640x480 frame down to 1/32 of it.
+WAVE_SIZES = (524288, 153600, 76800, 38400, 19200, 9600)
+
+
+def bench_waves(frames, rounds=None):
+    """The default Whitted frame and the bunny's (640x480, depth 5) at each --wave-rays, the
+    sizes in turns, each pass the median of the rounds (the images are the same bits)."""
+    rounds = rounds or TARGET_RUNS
+    rows = []
+    for label, scene in [("default scene", []), ("bunny", [os.path.join(MODELS, "bunny.glb")])]:
+        args = scene + ["--width", "640", "--height", "480", "--max-depth", "5"]
+        results = {w: [] for w in WAVE_SIZES}
+        for _ in range(rounds):
+            for w in WAVE_SIZES:
+                results[w].append(run(args + ["--wave-rays", str(w)], frames))
+        for w in WAVE_SIZES:
+            s = medians(results[w], GRIDRT_PASSES + ("lists_ms",))
+            rows.append({"label": f"{label} waves of {w}", "scene": label, "wave_rays": w,
+                         "waves": s["passes"], **{k: s[k] for k in GRIDRT_PASSES}})
+            print(f"waves {label:13s} {w:7d} rays ({s['passes']} waves): " +
+                  ", ".join(f"{k[:-3]} {s[k]:.2f}" for k in GRIDRT_PASSES), flush=True)
+    return rows
+
+
+def chart_waves(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    scenes = sorted({r["scene"] for r in rows})
+    fig, axes = plt.subplots(1, len(scenes), figsize=(6 * len(scenes), 4.5), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        mine = sorted((r for r in rows if r["scene"] == scene), key=lambda r: r["wave_rays"])
+        for k in GRIDRT_PASSES:
+            ax.plot([r["wave_rays"] for r in mine], [r[k] for r in mine], marker="o",
+                    label=k.replace("_ms", ""), linewidth=2.5 if k == "frame_ms" else 1)
+        ax.set(xscale="log", xlabel="camera rays a wave (--wave-rays)", ylabel="ms a frame",
+               title=f"{scene}: the frame by pass against its wave size")
+        ax.legend(fontsize=7)
     fig.suptitle(machine_line(), fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
@@ -1043,7 +1087,7 @@ def chart_dynamic(rows, path):
 SETS = {"paper": (bench_paper, chart_paper), "scaling": (bench_scaling, chart_scaling),
         "whitted": (bench_whitted, chart_whitted), "targets": (bench_targets, chart_targets),
         "single": (bench_single, chart_single), "adaptive": (bench_adaptive, chart_adaptive),
-        "dynamic": (bench_dynamic, chart_dynamic),
+        "dynamic": (bench_dynamic, chart_dynamic), "waves": (bench_waves, chart_waves),
         "farm": (bench_farm, chart_farm)}
 
 
@@ -1053,7 +1097,7 @@ def main():
     p.add_argument("--frames", type=int, default=7, help="timed frames per figure (median), >= 5")
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
     p.add_argument("--rounds", type=int, default=TARGET_RUNS,
-                   help=f"targets, adaptive, dynamic, farm: rounds of every variant in turns (default {TARGET_RUNS}), >= 3")
+                   help=f"targets, adaptive, dynamic, farm, waves: rounds of every variant in turns (default {TARGET_RUNS}), >= 3")
     a = p.parse_args()
     if a.frames < 5:
         p.error("--frames must be at least 5")
@@ -1062,7 +1106,7 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     for name in (SETS if a.set == "all" else [a.set]):
         bench, chart = SETS[name]
-        rounds_sets = ("targets", "adaptive", "dynamic", "farm")
+        rounds_sets = ("targets", "adaptive", "dynamic", "farm", "waves")
         rows = bench(a.frames, a.rounds) if name in rounds_sets else bench(a.frames)
         write_csv(os.path.join(a.out, f"{name}.csv"), rows)
         chart(rows, os.path.join(a.out, f"{name}.png"))
