@@ -1,6 +1,8 @@
 """Scene.intersect and Scene.occluded against a double-precision ray-triangle test in numpy
 (ray_triangle_oracle.py) on thousands of random rays against the bunny, its triangles
 read from the .glb by numpy (glb_mesh.py): misses, hits, triangle ids, t, u, v."""
+import threading
+import time
 import unittest
 
 import numpy as np
@@ -23,6 +25,12 @@ BARYCENTRIC_TOLERANCE = 5e-4
 EDGE_TOLERANCE = 1e-4
 # Of the rays, at most this share may be such edge cases (1 in 3,000 is).
 MAX_EDGE_CASE_SHARE = 0.005
+# Rays of the query that Python's lock must not wait for: enough for a query of about a
+# second on two cores, far longer than the pauses another thread sees while it runs.
+LONG_QUERY_RAYS = 1 << 20
+# The longest pause Python's other thread may see while the query runs, as a share of the
+# query's time: with the lock held throughout it would be the whole query.
+MAX_PAUSE_SHARE = 0.5
 
 
 def random_rays(vertices, count, seed):
@@ -134,6 +142,30 @@ class IntersectInput(DeviceTestCase):
         again = scene.intersect(strided, self.directions.astype(np.float64),
                                 self.tmax.astype(np.float64))
         np.testing.assert_array_equal(first.records, again.records)
+
+    def test_other_threads_run_while_the_device_works(self):
+        scene = gridrt.Scene(self.vertices, self.faces)
+        origins, directions, _ = random_rays(self.vertices, LONG_QUERY_RAYS, seed=11)
+        scene.intersect(origins[:16], directions[:16])  # the grid and kernels, beforehand
+        span = {}
+
+        def query():
+            span["start"] = time.perf_counter()
+            scene.intersect(origins, directions)
+            span["end"] = time.perf_counter()
+
+        worker = threading.Thread(target=query)
+        ticks = []
+        worker.start()
+        while worker.is_alive():
+            ticks.append(time.perf_counter())
+        worker.join()
+        during = [t for t in ticks if span["start"] <= t <= span["end"]]
+        length = span["end"] - span["start"]
+        self.assertGreater(len(during), 1, "this thread never ran while the query did")
+        pauses = np.diff([span["start"]] + during + [span["end"]])
+        self.assertLess(pauses.max(), MAX_PAUSE_SHARE * length,
+                        f"a pause of {pauses.max():.3f} s in a query of {length:.3f} s")
 
     def test_views_share_one_buffer(self):
         scene = gridrt.Scene(self.vertices, self.faces)
