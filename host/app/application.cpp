@@ -29,8 +29,8 @@
 #include "frame_statistics.h"
 #include "gltf_loader.h"
 #include "gridrt_intersector.h"
+#include "image_fits.h"
 #include "image_output.h"
-#include "memory_estimate.h"
 #include "mesh_import.h"
 #include "missing_device.h"
 #include "parallel_loops.h"
@@ -50,39 +50,6 @@
 namespace gridrt {
 
 namespace {
-
-[[noreturn]] void refuseImage(const Options& o, double bytes, double limit_bytes,
-                              const char* where) {
-  const std::string window =
-      o.crop ? " (window " + std::to_string(o.crop->x0) + "," + std::to_string(o.crop->y0) + "," +
-                   std::to_string(o.crop->x1) + "," + std::to_string(o.crop->y1) +
-                   (o.crop_output == CropOutput::Full ? ", written full size)" : ")")
-             : "";
-  throw RenderError("image " + std::to_string(o.width) + "x" + std::to_string(o.height) + window +
-                    " at " + std::to_string(o.spp) + " spp needs about " +
-                    std::to_string((long long)(bytes / (1 << 20))) + " MiB, more than the " +
-                    std::to_string((long long)(limit_bytes / (1 << 20))) + " MiB of " + where);
-}
-
-MemoryEstimate estimateOf(const Options& o) {
-  return estimateMemory(o.width, o.height, o.spp, o.crop ? *o.crop : PixelWindow{},
-                        o.crop_output == CropOutput::Full,
-                        o.accel == AccelKind::GridRt && o.transfer == BatchTransfer::Copy);
-}
-
-// Checked before the scene is loaded or a device opened, so that an absurd size fails at
-// once (gridrt --width 65536 --height 65536) and nothing is allocated for it.
-void checkImageFitsHost(const Options& o) {
-  const double host = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-  const double need = estimateOf(o).host_bytes;
-  if (need > host) refuseImage(o, need, host, "host memory");
-}
-
-void checkImageFitsDevice(const Options& o, const DeviceInfo& device) {
-  const double need = estimateOf(o).device_bytes;
-  if (need > double(device.global_mem_bytes))
-    refuseImage(o, need, double(device.global_mem_bytes), "device memory");
-}
 
 // One frame a run renders: its number (--frames), the time it is posed at (--time,
 // --frames; none: the still pose) and the files it writes.

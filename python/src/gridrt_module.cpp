@@ -28,21 +28,31 @@ namespace {
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
 using IndexArray = py::array_t<int64_t, py::array::c_style | py::array::forcecast>;
 
-// `object` as a C-ordered float32 array of shape rows x 3 (rows < 0: any), else
-// UsageError naming `what`.
-FloatArray rowsOfThree(const py::object& object, const char* what, py::ssize_t rows = -1) {
+// An array's shape as numpy prints it: (2, 3), (6,).
+std::string shapeText(const py::array& a) {
+  std::string shape = "(";
+  for (py::ssize_t d = 0; d < a.ndim(); ++d) shape += (d ? ", " : "") + std::to_string(a.shape(d));
+  return shape + (a.ndim() == 1 ? ",)" : ")");
+}
+
+// `object` as an array of numbers (booleans, integers, floats), else UsageError.
+py::array numbers(const py::object& object, const char* what) {
   py::array any = py::array::ensure(object);
-  if (!any || any.dtype().kind() == 'O' || any.dtype().kind() == 'U' || any.dtype().kind() == 'S')
+  const char kind = any ? any.dtype().kind() : 'O';
+  if (kind != 'b' && kind != 'i' && kind != 'u' && kind != 'f')
     throw UsageError(std::string(what) + ": expected an array of numbers");
-  if (any.dtype().kind() == 'c') throw UsageError(std::string(what) + ": complex numbers");
-  if (any.ndim() != 2 || any.shape(1) != 3 || (rows >= 0 && any.shape(0) != rows)) {
-    std::string shape = "(";
-    for (py::ssize_t d = 0; d < any.ndim(); ++d)
-      shape += (d ? ", " : "") + std::to_string(any.shape(d));
-    shape += any.ndim() == 1 ? ",)" : ")";
+  return any;
+}
+
+// `object` as a C-ordered float32 array of shape rows x 3 (rows < 0: any), else
+// UsageError naming `what` (`letter`: how the message names any number of rows).
+FloatArray rowsOfThree(const py::object& object, const char* what, py::ssize_t rows = -1,
+                       const char* letter = "N") {
+  py::array any = numbers(object, what);
+  if (any.ndim() != 2 || any.shape(1) != 3 || (rows >= 0 && any.shape(0) != rows))
     throw UsageError(std::string(what) + ": expected shape (" +
-                     (rows >= 0 ? std::to_string(rows) : std::string("N")) + ", 3), got " + shape);
-  }
+                     (rows >= 0 ? std::to_string(rows) : std::string(letter)) + ", 3), got " +
+                     shapeText(any));
   return FloatArray::ensure(any);
 }
 
@@ -53,8 +63,7 @@ std::shared_ptr<SceneQueries> sceneFromArrays(const py::object& vertices, const 
   if (!f_any || (f_any.dtype().kind() != 'i' && f_any.dtype().kind() != 'u'))
     throw UsageError("faces: expected an array of integers");
   if (f_any.ndim() != 2 || f_any.shape(1) != 3)
-    throw UsageError("faces: expected shape (M, 3), got " + std::to_string(f_any.ndim()) +
-                     " dimension(s)" + (f_any.ndim() == 2 ? " of width " + std::to_string(f_any.shape(1)) : ""));
+    throw UsageError("faces: expected shape (M, 3), got " + shapeText(f_any));
   IndexArray f = IndexArray::ensure(f_any);
   if (size_t(f.shape(0)) > size_t(INT32_MAX))
     throw UsageError("faces: more than 2^31 - 1 rows");
@@ -81,12 +90,9 @@ py::array traceArrays(SceneQueries& scene, const py::object& origins,
   rays.origins = o.data();
   rays.directions = d.data();
   FloatArray per_ray;
-  py::array t_any = py::array::ensure(tmax);
-  if (!t_any || (t_any.dtype().kind() != 'f' && t_any.dtype().kind() != 'i' &&
-                 t_any.dtype().kind() != 'u'))
-    throw UsageError("tmax: expected a number or an array of numbers");
+  py::array t_any = numbers(tmax, "tmax");
   if (t_any.ndim() == 0) {
-    rays.tmax_all = py::cast<float>(tmax);
+    rays.tmax_all = *FloatArray::ensure(t_any).data();
   } else {
     if (t_any.ndim() != 1 || t_any.shape(0) != o.shape(0))
       throw UsageError("tmax: expected a number or shape (" + std::to_string(o.shape(0)) + ",)");

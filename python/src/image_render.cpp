@@ -2,6 +2,7 @@
 
 #include "errors.h"
 #include "frame_render.h"
+#include "image_fits.h"
 #include "layered_image.h"
 #include "prepared_triangles.h"
 #include "python_options.h"
@@ -16,6 +17,7 @@ RenderedImage renderImage(const std::vector<std::string>& arguments, const Scene
     throw UsageError("a Scene and a scene path: pass one of them");
   if (scene && given.time)
     throw UsageError("time: pose a file's animation by passing its path, not a Scene");
+  checkImageFitsHost(given);
   const ThreadLimit thread_limit(given.threads);
   RenderedImage result;
   result.warnings = given.warnings;
@@ -33,7 +35,9 @@ RenderedImage renderImage(const std::vector<std::string>& arguments, const Scene
       scene->has_camera ? Bounds{}
                         : sceneBounds(source.animated ? source.animated->still() : *scene);
   const Options o = sizedForCamera(given, chooseCamera(given, *scene, framing));
+  if (o.width != given.width) checkImageFitsHost(o);
   ClRuntime runtime(o.device);
+  checkImageFitsDevice(o, runtime.info());
   const FrameResult frame = renderScene(o, runtime, *scene, chooseCamera(o, *scene, framing),
                                         [](double) {}, false);
   const LayeredImage image = outputImage(o, frame.frame);

@@ -88,6 +88,10 @@ class BadInput(DeviceTestCase):
         self.assert_value_error("unknown device|no device|device", gridrt.render, None,
                                 device="no such device name")
 
+    def test_an_image_too_large_for_the_machine_is_refused_before_it_is_made(self):
+        with self.assertRaisesRegex(RuntimeError, "image 65536x65536 at 64 spp needs about"):
+            gridrt.render(None, width=65536, height=65536, spp=64)
+
     def test_other_errors_are_runtime_errors(self):
         with tempfile.TemporaryDirectory() as folder:
             missing = os.path.join(folder, "missing.glb")
