@@ -39,17 +39,17 @@ void toSceneOrder(const Scene& scene, GrHit& hit, int triangle) {
 }  // namespace
 
 void checkRays(const RayArrays& rays) {
+  auto row = [](size_t i) { return "row " + std::to_string(i); };
   for (size_t i = 0; i < rays.count; ++i) {
-    const std::string row = "row " + std::to_string(i);
     if (!finite3(rays.origins + 3 * i))
-      throw UsageError("origins: " + row + " holds a NaN or infinite value");
+      throw UsageError("origins: " + row(i) + " holds a NaN or infinite value");
     const float* d = rays.directions + 3 * i;
-    if (!finite3(d)) throw UsageError("directions: " + row + " holds a NaN or infinite value");
+    if (!finite3(d)) throw UsageError("directions: " + row(i) + " holds a NaN or infinite value");
     if (d[0] == 0.0f && d[1] == 0.0f && d[2] == 0.0f)
-      throw UsageError("directions: " + row + " is zero");
+      throw UsageError("directions: " + row(i) + " is zero");
     const float tmax = rays.tmax ? rays.tmax[i] : rays.tmax_all;
     if (!(tmax > 0.0f))
-      throw UsageError("tmax: " + (rays.tmax ? row + " is " : std::string("is ")) +
+      throw UsageError("tmax: " + (rays.tmax ? row(i) + " is " : std::string("is ")) +
                        std::to_string(tmax) + ", not a positive number");
   }
 }
