@@ -72,8 +72,8 @@ void SceneQueries::trace(const RayArrays& rays, HitMode mode, GrHit* hits) {
   checkRays(rays);
   std::lock_guard<std::mutex> lock(mutex_);
   Intersector& engine = intersector();
-  std::vector<GrRay> batch;
-  std::vector<GrHit> found;
+  std::vector<GrRay>& batch = batch_;
+  std::vector<GrHit>& found = found_;
   for (size_t first = 0; first < rays.count; first += kQueryBatchRays) {
     const size_t n = std::min(kQueryBatchRays, rays.count - first);
     batch.resize(n);

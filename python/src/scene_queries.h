@@ -61,6 +61,9 @@ class SceneQueries {
   std::mutex mutex_;
   std::unique_ptr<ClRuntime> runtime_;
   std::unique_ptr<PreparedScene> prepared_;
+  // A batch's rays and hits, kept between queries (their pages stay mapped).
+  std::vector<GrRay> batch_;
+  std::vector<GrHit> found_;
 };
 
 }  // namespace gridrt
