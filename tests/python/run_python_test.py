@@ -7,6 +7,11 @@ import unittest
 SKIPPED = 77
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+try:
+    import numpy  # noqa: F401  (the module's arrays; Debian's python3-numpy)
+except ImportError:
+    print(f"skipped: {sys.executable} has no numpy (install python3-numpy)")
+    sys.exit(SKIPPED)
 suite = unittest.defaultTestLoader.loadTestsFromName(sys.argv[1])
 result = unittest.TextTestRunner(verbosity=2).run(suite)
 if not result.wasSuccessful():
