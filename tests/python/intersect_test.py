@@ -1,6 +1,8 @@
 """Scene.intersect and Scene.occluded against a double-precision ray-triangle test in numpy
 (ray_triangle_oracle.py) on thousands of random rays against the bunny, its triangles
 read from the .glb by numpy (glb_mesh.py): misses, hits, triangle ids, t, u, v."""
+import os
+import tempfile
 import threading
 import time
 import unittest
@@ -166,6 +168,22 @@ class IntersectInput(DeviceTestCase):
         pauses = np.diff([span["start"]] + during + [span["end"]])
         self.assertLess(pauses.max(), MAX_PAUSE_SHARE * length,
                         f"a pause of {pauses.max():.3f} s in a query of {length:.3f} s")
+
+    def test_a_mesh_file_gives_the_hits_of_its_arrays(self):
+        # An OBJ (read through assimp, as the command line reads it) of the same triangles.
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "bunny.obj")
+            with open(path, "w") as obj:
+                for x, y, z in self.vertices.astype(np.float32):
+                    obj.write(f"v {float(x)!r} {float(y)!r} {float(z)!r}\n")
+                for a, b, c in self.faces + 1:
+                    obj.write(f"f {a} {b} {c}\n")
+            from_file = gridrt.load(path).intersect(self.origins, self.directions, self.tmax)
+        from_arrays = gridrt.Scene(self.vertices, self.faces).intersect(
+            self.origins, self.directions, self.tmax)
+        self.assertGreater((from_arrays.prim >= 0).sum(), RAY_COUNT // 5)
+        for name in ("t", "prim", "u", "v"):
+            np.testing.assert_array_equal(getattr(from_file, name), getattr(from_arrays, name))
 
     def test_views_share_one_buffer(self):
         scene = gridrt.Scene(self.vertices, self.faces)
