@@ -38,8 +38,12 @@ class PipInstall(unittest.TestCase):
             self.assertTrue(os.path.getsize(image) > 0)
             for command in ("gridrt-merge-tiles", "gridrt-farm"):
                 self.assertTrue(os.access(os.path.join(bin_dir, command), os.X_OK), command)
-            subprocess.run([os.path.join(bin_dir, "gridrt-farm"), "--help"], check=True,
-                           capture_output=True, env=environment, cwd=folder)
+            # Without the [farm] extra (Dask), the farm's command says so in one line.
+            farm = subprocess.run([os.path.join(bin_dir, "gridrt-farm"), "--help"],
+                                  capture_output=True, text=True, env=environment, cwd=folder)
+            self.assertEqual(farm.returncode, 1, farm.stderr)
+            self.assertEqual(len(farm.stderr.strip().splitlines()), 1, farm.stderr)
+            self.assertIn("pip install 'gridrt[farm]'", farm.stderr)
 
 
 if __name__ == "__main__":
