@@ -18,6 +18,12 @@ const ImageCodec* loadCodec() {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) candidates.push_back((exe.parent_path() / GRIDRT_IMAGE_CODEC_FILE).string());
+  // Beside the shared object that holds this code, when it is not the executable (the
+  // Python module's extension: python/CMakeLists.txt installs the module beside it).
+  Dl_info self{};
+  if (dladdr(reinterpret_cast<void*>(&loadCodec), &self) && self.dli_fname &&
+      fs::path(self.dli_fname).is_absolute())
+    candidates.push_back((fs::path(self.dli_fname).parent_path() / GRIDRT_IMAGE_CODEC_FILE).string());
   candidates.push_back(GRIDRT_IMAGE_CODEC_PATH);
   std::string why;
   for (const std::string& path : candidates) {
