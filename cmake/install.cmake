@@ -11,11 +11,27 @@
 # The installed programs find what they need relative to their own location, never through
 # the build or source tree, so the installed tree can be moved as a whole.
 include(GNUInstallDirs)
+# Installing and packaging take what is built and build nothing: `cpack` in a built tree
+# then skips make's walk over every target (seconds), and an unbuilt file is an error.
+set(CMAKE_SKIP_INSTALL_ALL_DEPENDENCY ON)
 
 set(GRIDRT_INSTALL_MODULEDIR ${CMAKE_INSTALL_LIBDIR}/gridrt CACHE STRING
     "Where the dlopen-ed modules are installed, relative to the prefix")
 set(GRIDRT_INSTALL_FARMDIR ${CMAKE_INSTALL_DATADIR}/gridrt/python CACHE STRING
     "Where the farm's Python package is installed, relative to the prefix")
+set(GRIDRT_INSTALL_DOCDIR ${CMAKE_INSTALL_DATAROOTDIR}/doc/gridrt CACHE STRING
+    "Where README, LICENSE and docs/ are installed, relative to the prefix")
+set(GRIDRT_INSTALL_BASHDIR ${CMAKE_INSTALL_DATAROOTDIR}/bash-completion/completions CACHE
+    STRING "Where bash's completion of gridrt is installed (bash-completion loads it there)")
+# Debian's zsh reads /usr/share/zsh/vendor-completions (the package's place) and
+# /usr/local/share/zsh/site-functions; zsh built from source reads site-functions.
+if(EXISTS /etc/debian_version)
+  set(_zsh_dir vendor-completions)
+else()
+  set(_zsh_dir site-functions)
+endif()
+set(GRIDRT_INSTALL_ZSHDIR ${CMAKE_INSTALL_DATAROOTDIR}/zsh/${_zsh_dir} CACHE STRING
+    "Where zsh's completion of gridrt (_gridrt) is installed")
 foreach(dir CMAKE_INSTALL_BINDIR GRIDRT_INSTALL_MODULEDIR GRIDRT_INSTALL_FARMDIR)
   if(IS_ABSOLUTE "${${dir}}")
     message(FATAL_ERROR "${dir} must be relative to the prefix (the installed programs find "
