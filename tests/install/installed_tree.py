@@ -4,6 +4,7 @@ is covered by an empty tmpfs (root, or a user namespace), so nothing there can b
 Where namespaces are refused the commands run with the trees in place, and the tests still
 check through the dynamic loader's log that nothing is loaded from them."""
 import os
+import re
 import shutil
 import subprocess
 import tempfile
@@ -24,6 +25,11 @@ def run(argv, **kwargs):
 def file_bytes(path):
     with open(path, "rb") as f:
         return f.read()
+
+
+def without_loader_log(stderr):
+    """stderr without the dynamic loader's LD_DEBUG lines ("  PID:\t..."), to read gridrt's."""
+    return "\n".join(l for l in stderr.splitlines() if not re.match(r"^\s*\d+:\t", l))
 
 
 def same_image(test, path, reference):
