@@ -17,16 +17,13 @@ class Install(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.tree = InstalledTree()
+        cls.addClassCleanup(cls.tree.close)  # also when the rest of setUpClass fails
         if not cls.tree.trees.hidden:
             print(f"note: the trees stay visible ({cls.tree.trees.why_not}); the loader's "
                   "log alone shows where the module came from")
         cls.help = help_options.help_text(BUILT_GRIDRT)
         cls.options = help_options.options(cls.help)
         assert len(cls.options) > 20, "gridrt --help lists too few options to compare"
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.tree.close()
 
     def reference(self, name, *argv):
         """The build tree's gridrt's render, to compare the installed one's with."""

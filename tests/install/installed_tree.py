@@ -100,6 +100,13 @@ class InstalledTree:
 
     def __init__(self):
         self.scratch = tempfile.mkdtemp(prefix="gridrt-install-test-")
+        try:
+            self._install()
+        except BaseException:
+            self.close()
+            raise
+
+    def _install(self):
         for tree in (SOURCE, BUILD):
             if os.path.realpath(self.scratch).startswith(os.path.realpath(tree) + os.sep):
                 raise RuntimeError(f"the temporary folder {self.scratch} lies inside {tree}")

@@ -31,16 +31,13 @@ class Package(unittest.TestCase):
                 raise unittest.SkipTest(f"{tool} is not installed (Debian's {package}; "
                                         "tools/setup.sh installs it)")
         cls.scratch = tempfile.mkdtemp(prefix="gridrt-package-test-")
+        cls.addClassCleanup(shutil.rmtree, cls.scratch, ignore_errors=True)
         r = run(["cpack", "-G", "DEB", "-B", cls.scratch], cwd=BUILD)
         if r.returncode != 0:
             raise AssertionError(f"cpack failed: {(r.stdout + r.stderr)[-2000:]}")
         debs = glob.glob(os.path.join(cls.scratch, "gridrt_*.deb"))
         assert len(debs) == 1, f"cpack made {debs}"
         cls.deb = debs[0]
-
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.scratch, ignore_errors=True)
 
     def control(self):
         r = run(["dpkg-deb", "--field", self.deb])
