@@ -69,7 +69,7 @@ def bash_script(options):
             action = "COMPREPLY=()"
         cases.append(f"    {pattern}) {action}; return ;;")
     return f"""# bash completion of gridrt's options, made from `gridrt --help` at build time
-# (tools/completions/make_completions.py); it needs no bash-completion helpers.
+# (tools/completions/make_completions.py); it needs nothing of the bash-completion package.
 _gridrt() {{
   local cur=${{COMP_WORDS[COMP_CWORD]}} prev=
   [ "$COMP_CWORD" -gt 0 ] && prev=${{COMP_WORDS[COMP_CWORD-1]}}
