@@ -4,7 +4,9 @@
 # a Release build in build/ and builds the renderer, tools and tests. The render farm
 # (tools/gridrt-farm) runs on Debian's python3 with python3-distributed (Dask); the Python
 # module (python/, docs/python.md) builds for it with pybind11-dev and python3-numpy, and
-# its tests read the program's EXR with python3-openimageio.
+# its tests read the program's EXR with python3-openimageio. help2man makes the man page;
+# dpkg-dev and file are CPack's for the Debian package; zsh checks the zsh completion
+# (docs/install.md).
 # With --bench it also sets up the benchmark harness: its Python packages (matplotlib,
 # numpy, OpenImageIO from PyPI into .venv/, via tools/setup_python.sh) and Embree 3
 # (Debian's libembree-dev), the peer tools/bench.py measures beside GridRT.
@@ -27,6 +29,7 @@ PACKAGES=(
   libdraco-dev libmeshoptimizer-dev libassimp-dev
   python3 python3-venv python3-distributed python3-psutil
   pybind11-dev python3-dev python3-numpy python3-openimageio
+  help2man dpkg-dev file zsh
 )
 if [ "$bench" -eq 1 ]; then PACKAGES+=(libembree-dev); fi
 
