@@ -2,7 +2,8 @@
 # Sets GridRT up on a Debian machine: installs the Debian packages that are missing
 # (as root, or through sudo; otherwise prints the exact command to run), then configures
 # a Release build in build/ and builds the renderer, tools and tests. The render farm
-# (tools/gridrt-farm) runs on Debian's python3 with python3-distributed (Dask).
+# (tools/gridrt-farm) runs on Debian's python3 with python3-distributed (Dask); gridrt
+# --version's build id is a SHA-256 from libcrypto (libssl-dev).
 # With --bench it also sets up the benchmark harness: its Python packages (matplotlib,
 # numpy, OpenImageIO from PyPI into .venv/, via tools/setup_python.sh) and Embree 3
 # (Debian's libembree-dev), the peer tools/bench.py measures beside GridRT.
@@ -22,8 +23,9 @@ PACKAGES=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libglm-dev libopenimageio-dev openimageio-tools libpng-dev libtinygltf-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev libhwy-dev libtbb-dev
-  libdraco-dev libmeshoptimizer-dev libassimp-dev
+  libdraco-dev libmeshoptimizer-dev libassimp-dev libssl-dev
   python3 python3-venv python3-distributed python3-psutil
+  openssl iproute2  # the farm's certificates and its tests between network namespaces
 )
 if [ "$bench" -eq 1 ]; then PACKAGES+=(libembree-dev); fi
 
