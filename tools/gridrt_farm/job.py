@@ -74,7 +74,8 @@ class FarmJob:
     def submit(self, task, scene_ref, workers):
         task.attempts += 1
         task.workers = set(workers)
-        key = f"gridrt-{self.job_id}-{task.frame_pos}-{task.tile_index}-{task.attempts}"
+        self.submissions += 1  # every submission a key of its own, also after a cancel
+        key = f"gridrt-{self.job_id}-{task.frame_pos}-{task.tile_index}-{self.submissions}"
         future = self.client.submit(worker_task.render_tile, self.spec(task), scene_ref,
                                     key=key, pure=False, priority=-task.order,
                                     workers=sorted(workers), allow_other_workers=False)
@@ -100,7 +101,7 @@ class FarmJob:
             return self.stats
         # The task's module goes to the workers by value: they need no copy of the farm.
         cloudpickle.register_pickle_by_value(worker_task)
-        self.owner = {}
+        self.owner, self.submissions = {}, 0
         self.frame_tiles = {pos: FrameTiles(output, len(tiles))
                             for pos, (_, output) in enumerate(frames)}
         pending, active = collections.deque(tasks), set()
@@ -121,7 +122,9 @@ class FarmJob:
                 for future in [f for f in active if not self.owner[f.key].workers & alive]:
                     active.discard(future)  # its workers are gone: Dask would wait for them
                     future.cancel()
-                    pending.appendleft(self.owner.pop(future.key))
+                    task = self.owner.pop(future.key)
+                    task.attempts -= 1  # not a try of gridrt's: --retries counts those
+                    pending.appendleft(task)
                 while pending and len(active) < IN_FLIGHT_PER_WORKER * len(usable):
                     targets = usable - pending[0].failed_on
                     if not targets:
@@ -176,6 +179,9 @@ class FarmJob:
 
     def _wait(self, active):
         from distributed import wait
+        if not active:  # no worker to hand a task to yet
+            time.sleep(WAIT_SECONDS)
+            return set()
         try:
             return wait(list(active), timeout=WAIT_SECONDS, return_when="FIRST_COMPLETED").done
         except TimeoutError:
