@@ -2,7 +2,10 @@
 merger, which runs here. Installed, both sit beside gridrt-farm (P/bin); in a source tree,
 in its build/ folder; else on PATH."""
 import os
-import shutil
+
+# The first candidate that is an executable file here (a bare name on PATH), or None: the
+# workers' own rule (worker_task.py), so that here and there agree.
+from .worker_task import resolve_gridrt as first_executable
 
 GRIDRT = "gridrt"
 MERGE_TILES = "merge_tiles"  # the tile merger's file name
@@ -18,15 +21,6 @@ def gridrt_candidates(program, given=None):
         return [os.path.abspath(given)]
     beside = os.path.join(os.path.dirname(os.path.abspath(program)), GRIDRT)
     return [beside, os.path.join(SOURCE_TREE, "build", GRIDRT), GRIDRT]
-
-
-def first_executable(candidates):
-    """The first candidate that is an executable file here (a bare name on PATH), or None."""
-    for path in candidates:
-        found = shutil.which(path) if os.sep not in path else path
-        if found and os.path.isfile(found) and os.access(found, os.X_OK):
-            return os.path.abspath(found)
-    return None
 
 
 def merge_tiles_for(gridrt, program):
