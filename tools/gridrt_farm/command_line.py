@@ -4,6 +4,8 @@ import argparse
 import os
 import re
 
+from .executables import MERGE_TILES
+
 # The gridrt options the farm passes on to every task, by kind: flags take no value, the
 # others exactly one (`--opt VALUE` or `--opt=VALUE`); this is also how the scene is told
 # apart from option values. An option in none of these lists is refused, so a worker runs
@@ -68,8 +70,9 @@ def parser():
               "[gridrt options...]",
         description="Renders a gridrt job's tiles and frames on a Dask cluster and merges "
                     "each frame into OUT, bit for bit what one gridrt process writes.",
-        epilog="Every other option goes to gridrt on every task (gridrt --help); the farm "
-               "sets --crop, --crop-output, --width, --height and -q itself. docs/farm.md.")
+        epilog="gridrt's options go to gridrt on every task (gridrt --help); the farm "
+               "sets --crop, --crop-output, --width, --height and -q itself and refuses "
+               "those it cannot honour or does not know. docs/farm.md.")
     p.add_argument("--scheduler", metavar="tls://HOST:PORT", help="the Dask scheduler, "
                    "tls://HOST:PORT (tcp:// on loopback, or with --insecure); without it a "
                    "local cluster of --workers processes is started on this machine")
@@ -94,8 +97,9 @@ def parser():
     p.add_argument("--gridrt", metavar="PATH", help="the gridrt the workers run (default: "
                    "the gridrt beside gridrt-farm, else this source tree's build/gridrt, "
                    "else gridrt on PATH; on each worker alike)")
-    p.add_argument("--merge-tiles", metavar="PATH", help="the merge_tiles that merges the "
-                   "frames here (default: tools/merge_tiles of gridrt's build)")
+    p.add_argument("--merge-tiles", metavar="PATH", help=f"the tile merger ({MERGE_TILES}) "
+                   "that merges the frames here (default: the one beside gridrt, in gridrt's "
+                   "build, beside this tool, or on PATH)")
     p.add_argument("--shared-scene", action="store_true",
                    help="the workers read SCENE from its path (a shared file system) "
                    "instead of receiving it with the tasks")
@@ -107,7 +111,8 @@ def parser():
                    help="a task gridrt fails is tried again on another worker this many "
                    "times at most (default 2)")
     p.add_argument("--wait-for-workers", type=float, default=60.0, metavar="SECONDS",
-                   help="how long the job waits while no worker is alive (default 60)")
+                   help="how long the job waits while no worker of its gridrt build is alive "
+                   "(default 60)")
     p.add_argument("--farm-stats", metavar="FILE", help="write the job's statistics as JSON")
     p.add_argument("-o", "--output", required=True, metavar="OUT", help="output image, or a printf pattern "
                    "(out_%%04d.png) with --frames")
