@@ -33,9 +33,11 @@ def renders(path):
     return [l for l in lines(path) if l != "--version"]
 
 
-def running_gridrt(process):
+def rendering(process):
+    """Whether the worker runs gridrt on a tile now (not gridrt --version)."""
     try:
-        return any(c.name() == "gridrt" for c in psutil.Process(process.pid).children(True))
+        return any(c.name() == "gridrt" and "--crop" in c.cmdline()
+                   for c in psutil.Process(process.pid).children(True))
     except psutil.NoSuchProcess:
         return False
 
@@ -147,12 +149,17 @@ class FarmBetweenHosts(unittest.TestCase):
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         victim = self.cluster.workers["w1"]
         deadline = time.monotonic() + RUN_SECONDS
-        while not running_gridrt(victim):
+        while not rendering(victim):
             self.assertIsNone(job.poll(), "the job ended before the worker ran a tile")
             self.assertLess(time.monotonic(), deadline, "the worker never ran a tile")
             time.sleep(POLL_SECONDS)
         self.net.cut("w1")  # mid-tile: the worker lives on, unreachable
-        _, err = job.communicate(timeout=RUN_SECONDS)
+        try:
+            _, err = job.communicate(timeout=RUN_SECONDS)
+        except subprocess.TimeoutExpired:
+            job.kill()
+            _, err = job.communicate()
+            self.fail(f"the job did not end: {err}\nscheduler: {self.cluster.log_tail()}")
         self.assertEqual(job.returncode, 0, err)
         self.assertIn("1 workers lost", err)
         self.assertIsNone(victim.poll())  # the worker was cut off, not killed

@@ -19,9 +19,12 @@ SUBNET = "10.57.0"       # inside the namespaces only: no route of the machine's
 SCHEDULER_PORT = 8786    # the scheduler's namespace is its own: a fixed port is free
 IP_SECONDS = 20          # the longest one `ip` or `openssl` command may take
 # A lost worker is noticed when its heartbeats stop for this long (Dask's default is 5
-# minutes), and a connection to it is given up after the connect timeout (default 30 s).
-WORKER_TTL = "4s"
+# minutes), and a new connection to it is given up after the connect timeout (default
+# 30 s). Open connections to it break after distributed.comm.timeouts.tcp (30 s), left
+# as it is: at 12 s workers under load lost their scheduler with no link cut.
+WORKER_TTL = "8s"  # loose enough that a busy worker on a loaded 2-core machine is kept
 CONNECT_TIMEOUT = "3s"
+LOG_TAIL_LINES = 30  # of the scheduler's log, in a failed test's message
 
 
 def _run(argv):
@@ -194,6 +197,10 @@ class NamespaceCluster:
             self.close()
             raise RuntimeError("the namespaced cluster did not start: " +
                                (r.stderr.strip().splitlines() or ["?"])[-1])
+
+    def log_tail(self):
+        with open(os.path.join(self.folder, "scheduler.log")) as f:
+            return "".join(f.readlines()[-LOG_TAIL_LINES:])
 
     def close(self):
         for p in reversed(self.processes):

@@ -30,6 +30,11 @@ WAIT_SECONDS = 0.5  # the longest wait between two looks at the cluster
 # Tasks handed to each worker of the job's build at once: one runs while the next waits
 # there, so no worker waits for this client, and later workers still find tasks to take.
 IN_FLIGHT_PER_WORKER = 2
+# The longest the job waits for one finished task's result: a result held by a worker
+# whose link is cut cannot come until Dask gives the worker up and makes it again, and the
+# job keeps looking at the cluster meanwhile.
+FETCH_SECONDS = 5.0
+AGAIN = "again"  # _finish(): the result is not here yet
 
 
 class JobFailed(Exception):
@@ -133,8 +138,10 @@ class FarmJob:
                 done = self._wait(active | self.builds.futures())
                 self.builds.take(done)
                 for future in done & active:
-                    active.discard(future)
                     retry = self._finish(future)
+                    if retry is AGAIN:
+                        continue  # Dask makes it again where it was lost; wait for it
+                    active.discard(future)
                     if retry is not None:
                         pending.appendleft(retry)
                     else:
@@ -188,13 +195,17 @@ class FarmJob:
             return set()
 
     def _finish(self, future):
-        """Handles a finished task; returns the task when it is to be tried again, or None."""
-        task = self.owner.pop(future.key)
+        """Handles a finished task; returns the task when it is to be tried again, AGAIN when
+        its result could not be fetched yet, or None."""
         try:
-            result = future.result()
+            result = future.result(timeout=FETCH_SECONDS)
+        except TimeoutError:  # its worker is out of reach, or its result lost with it
+            return AGAIN
         except Exception as e:  # Dask gave up: the task killed its workers (KilledWorker)
+            task = self.owner.pop(future.key)
             raise JobFailed(f"gridrt-farm: {self._name(task)} was lost with every worker that "
                             f"ran it ({type(e).__name__})", 1) from None
+        task = self.owner.pop(future.key)
         if not result["ok"]:
             return self._retry(task, result)
         self.stats["rays"] += result["rays"]
