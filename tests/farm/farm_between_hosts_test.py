@@ -145,7 +145,7 @@ class FarmBetweenHosts(unittest.TestCase):
         self.start()
         flags = [*SIZE, "--spp", "4"]
         out = os.path.join(self.folder, "farm.exr")
-        job = subprocess.Popen(self.farm("--tiles", "4x4", *flags, "-o", out),
+        job = subprocess.Popen(self.farm("--tiles", "2x2", *flags, "-o", out),
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         victim = self.cluster.workers["w1"]
         deadline = time.monotonic() + RUN_SECONDS

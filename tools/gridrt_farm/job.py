@@ -30,9 +30,10 @@ WAIT_SECONDS = 0.5  # the longest wait between two looks at the cluster
 # Tasks handed to each worker of the job's build at once: one runs while the next waits
 # there, so no worker waits for this client, and later workers still find tasks to take.
 IN_FLIGHT_PER_WORKER = 2
-# The longest the job waits for one finished task's result: a result held by a worker
-# whose link is cut cannot come until Dask gives the worker up and makes it again, and the
-# job keeps looking at the cluster meanwhile.
+# How long the job waits at first for one finished task's result, doubled at each wait
+# that runs out (a large tile on a slow link still arrives): a result held by a worker whose
+# link is cut cannot come until Dask gives the worker up and makes it again, and the job
+# keeps looking at the cluster meanwhile.
 FETCH_SECONDS = 5.0
 AGAIN = "again"  # _finish(): the result is not here yet
 
@@ -48,6 +49,7 @@ class Task:
         self.order, self.frame_pos, self.frame = order, frame_pos, frame
         self.tile_index, self.tile = tile_index, tile
         self.failed_on, self.attempts, self.workers = set(), 0, set()
+        self.fetch_seconds = FETCH_SECONDS
         self.message = ""
 
 
@@ -197,9 +199,11 @@ class FarmJob:
     def _finish(self, future):
         """Handles a finished task; returns the task when it is to be tried again, AGAIN when
         its result could not be fetched yet, or None."""
+        task = self.owner[future.key]
         try:
-            result = future.result(timeout=FETCH_SECONDS)
+            result = future.result(timeout=task.fetch_seconds)
         except TimeoutError:  # its worker is out of reach, or its result lost with it
+            task.fetch_seconds *= 2
             return AGAIN
         except Exception as e:  # Dask gave up: the task killed its workers (KilledWorker)
             task = self.owner.pop(future.key)
