@@ -1,6 +1,7 @@
 """The farm's door and what passes it, without a cluster: tcp:// off loopback is refused
-without --insecure, tls:// needs its three files, and a worker gets only gridrt options the
-farm knows (checked against gridrt --help), gridrt found beside the farm or on PATH."""
+without --insecure, tls:// needs its three files, a worker gets only gridrt options the
+farm knows (checked against gridrt --help) and writes only in its own folders, gridrt
+found beside the farm or on PATH."""
 import os
 import re
 import stat
@@ -11,7 +12,7 @@ import unittest
 from farm_support import FARM, GRIDRT, SIZE, SOURCE, run
 
 sys.path.insert(0, os.path.join(SOURCE, "tools"))
-from gridrt_farm import command_line, executables  # noqa: E402
+from gridrt_farm import command_line, executables, worker_task  # noqa: E402
 from gridrt_farm.security import is_loopback  # noqa: E402
 
 OFF_LOOPBACK = "198.51.100.7"  # TEST-NET-2 (RFC 5737): never a machine of this network
@@ -95,6 +96,34 @@ class FarmSecurity(unittest.TestCase):
         self.assert_usage_error(self.farm("--aov-file", "all.exr"), "--aov-file")
         self.assert_usage_error(self.farm("--no-such-option", "1"), "--no-such-option")
         self.assertEqual(os.listdir(self.folder), [])
+
+    def test_a_worker_writes_only_in_its_own_folders(self):
+        saved = tempfile.tempdir
+        tempfile.tempdir = self.folder  # the worker's temporary folder
+        self.addCleanup(setattr, tempfile, "tempdir", saved)
+        spec = {"gridrt": [GRIDRT], "frame": None, "crop": "0,0,8,8", "scene_shown": None,
+                "options": ["--width", "16", "--height", "12", "--aov-file",
+                            os.path.join(self.folder, "elsewhere.exr")]}
+        result = worker_task.render_tile(spec, None)
+        self.assertEqual((result["ok"], result["code"]), (False, 2), result)
+        self.assertIn("--aov-file", result["message"])
+        spec["options"] = ["--width", "16", "--height", "12"]
+        result = worker_task.render_tile(spec, None)
+        self.assertTrue(result["ok"], result)
+        self.assertEqual(os.listdir(self.folder), [])  # the task's folder is gone with it
+        files = {"scene.gltf": b"{}", "buffers/b.bin": b"\0"}
+        good = {"digest": worker_task.bundle_digest(files), "files": files, "main": "scene.gltf"}
+        path = worker_task.scene_on_this_machine(good)
+        self.assertEqual(path, os.path.join(self.folder, worker_task.SCENE_CACHE,
+                                            good["digest"], "scene.gltf"))
+        self.assertTrue(os.path.isfile(os.path.join(os.path.dirname(path), "buffers", "b.bin")))
+        outside = dict(files, **{"../outside.bin": b"x"})
+        for bad in ({**good, "digest": "0" * 32},  # not the files' digest
+                    {**good, "files": outside, "digest": worker_task.bundle_digest(outside)},
+                    {**good, "main": "../scene.gltf"}):
+            with self.assertRaises(ValueError):
+                worker_task.scene_on_this_machine(bad)
+        self.assertFalse(os.path.exists(os.path.join(self.folder, "outside.bin")))
 
     def test_gridrt_is_found_beside_the_farm_else_in_the_tree_else_on_path(self):
         beside = os.path.join(self.folder, "bin")
