@@ -6,7 +6,7 @@
 # module (python/, docs/python.md) builds for it with pybind11-dev and python3-numpy, and
 # its tests read the program's EXR with python3-openimageio. help2man makes the man page;
 # dpkg-dev and file are CPack's for the Debian package; zsh checks the zsh completion
-# (docs/install.md).
+# (docs/install.md). gridrt --version's build id is a SHA-256 from libcrypto (libssl-dev).
 # With --bench it also sets up the benchmark harness: its Python packages (matplotlib,
 # numpy, OpenImageIO from PyPI into .venv/, via tools/setup_python.sh) and Embree 3
 # (Debian's libembree-dev), the peer tools/bench.py measures beside GridRT.
@@ -26,10 +26,11 @@ PACKAGES=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libglm-dev libopenimageio-dev openimageio-tools libpng-dev libtinygltf-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev libhwy-dev libtbb-dev
-  libdraco-dev libmeshoptimizer-dev libassimp-dev
+  libdraco-dev libmeshoptimizer-dev libassimp-dev libssl-dev
   python3 python3-venv python3-distributed python3-psutil
   pybind11-dev python3-dev python3-numpy python3-openimageio
   help2man dpkg-dev file zsh
+  openssl iproute2  # the farm's certificates and its tests between network namespaces
 )
 if [ "$bench" -eq 1 ]; then PACKAGES+=(libembree-dev); fi
 

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "aov_channels.h"
+#include "build_identity.h"
 #include "errors.h"
 #include "image_format.h"
 #include "standard_streams.h"
@@ -392,7 +393,8 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
       ->check(numberIn(0.001, 1e6));
   app.add_option("--animation", o.animation, "play only this glTF animation (default: all)")
       ->type_name("NAME|INDEX");
-  app.set_version_flag("--version", std::string("gridrt ") + GRIDRT_VERSION);
+  // The build's identity is computed only when asked for (build_identity.h).
+  app.set_version_flag("--version", [] { return versionText(GRIDRT_VERSION); });
 }
 
 // --aov NAME=FILE: the AOV's own file; --aov NAME: a layer of --aov-file, which without

@@ -13,6 +13,10 @@ FIRST_FOV, FOV_STEP = 30.0, 5.0  # degrees: eight frames that all differ
 
 
 def main(argv):
+    gridrt = os.environ.get("GRIDRT_BINARY") or os.path.join(
+        os.path.dirname(os.path.abspath(__file__)), "..", "..", "build", "gridrt")
+    if argv == ["--version"]:  # the build it stands in for
+        os.execv(gridrt, [gridrt, "--version"])
     out, frame, rest, k = None, None, [], 0
     while k < len(argv):
         if argv[k] == "--frames":
@@ -43,8 +47,6 @@ def main(argv):
         with open(log, "a") as f:
             f.write(f"{frame}\n")
     target = re.sub(r"%0?\d*d", lambda m: m.group(0) % frame, out, count=1)
-    gridrt = os.environ.get("GRIDRT_BINARY") or os.path.join(
-        os.path.dirname(os.path.abspath(__file__)), "..", "..", "build", "gridrt")
     os.execv(gridrt, [gridrt, *rest, "--fov", str(FIRST_FOV + FOV_STEP * frame), "-o", target])
 
 

@@ -50,13 +50,21 @@ class LoopbackCluster:
              "0", "--no-dashboard", "--scheduler-file", self.scheduler_file, "--idle-timeout",
              SCHEDULER_IDLE], "scheduler")
         self.address = self._wait_for_address()
-        self.workers = [self._start(
+        self.workers = []
+        for k in range(workers):
+            self.add_worker(worker_env[k])
+        self._wait_for_workers(workers)
+
+    def add_worker(self, extra_env=None):
+        """Starts one more worker process (with extra_env in its environment); returns it."""
+        k = len(self.workers)
+        self.workers.append(self._start(
             [PYTHON, "-m", "distributed.cli.dask_worker", "--scheduler-file", self.scheduler_file,
              "--nthreads", "1", "--no-nanny", "--no-dashboard", "--host", "127.0.0.1",
              "--death-timeout", WORKER_ORPHAN,
              "--local-directory", os.path.join(self.folder, f"worker{k}")], f"worker{k}",
-            worker_env[k]) for k in range(workers)]
-        self._wait_for_workers(workers)
+            extra_env))
+        return self.workers[-1]
 
     def _start(self, argv, name, extra_env=None):
         log = open(os.path.join(self.folder, name + ".log"), "w")

@@ -18,13 +18,15 @@ def quiet_dask_logs():
         logging.getLogger(name).setLevel(logging.CRITICAL)
 
 
-def open_client(scheduler, workers):
-    """A connected Client and the LocalCluster it owns (None with --scheduler)."""
+def open_client(scheduler, workers, security=None, connect_seconds=10.0):
+    """A connected Client and the LocalCluster it owns (None with --scheduler); security:
+    the distributed.Security of a tls:// scheduler (security.py), else None."""
     from distributed import Client, LocalCluster
     quiet_dask_logs()
     if scheduler:
         try:
-            return Client(scheduler, timeout="10s", set_as_default=True), None
+            return Client(scheduler, timeout=f"{connect_seconds}s", set_as_default=True,
+                          **({"security": security} if security else {})), None
         except (OSError, TimeoutError, ValueError) as e:
             raise ClusterError(f"cannot reach the scheduler at {scheduler}: "
                                f"{str(e).splitlines()[0] if str(e) else type(e).__name__}") \

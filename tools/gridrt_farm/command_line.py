@@ -4,21 +4,35 @@ import argparse
 import os
 import re
 
-# gridrt's options that take no value; every other option takes exactly one (as
-# `--opt VALUE` or `--opt=VALUE`). This is how the scene is told apart from option values.
-GRIDRT_FLAGS = {"--force", "--list-devices", "--pe-interrupt", "--primary-only", "--stats",
-                "-q", "--quiet", "--version", "-h", "--help"}
-# gridrt options the farm sets itself or cannot honour, with the reason it gives.
+from .executables import MERGE_TILES
+
+# The gridrt options the farm passes on to every task, by kind: flags take no value, the
+# others exactly one (`--opt VALUE` or `--opt=VALUE`); this is also how the scene is told
+# apart from option values. An option in none of these lists is refused, so a worker runs
+# gridrt only with options the farm knows (tests/farm checks them against gridrt --help).
+FORWARDED_FLAGS = {"--alpha", "--pe-interrupt", "--primary-only", "--stats", "-q", "--quiet",
+                   "-v", "--verbose"}
+FORWARDED_VALUES = {"--width", "--height", "--spp", "--max-depth", "--device", "--threads",
+                    "--wave-rays", "--accel", "--grid", "--grid-density", "--pe-layout",
+                    "--transfer", "--background", "--ambient", "--ray-offset",
+                    "--intersector", "--shading", "--aa", "--aa-samples", "--aa-threshold",
+                    "--min-path-weight", "--camera", "--look-at", "--fov", "--time", "--fps",
+                    "--animation"}
+# gridrt options the farm sets itself or cannot honour, with the reason it gives. None of
+# them reaches a worker: every file a task writes is in its own temporary folder.
 REFUSED = {
     "--crop": "the farm crops the tiles itself (--tiles)",
     "--crop-output": "the farm crops the tiles itself (--tiles)",
     "--aov": "AOVs are not merged by the farm; render them with gridrt",
+    "--aov-file": "AOVs are not merged by the farm; render them with gridrt",
     "--stats-json": "the farm writes its own statistics (--farm-stats)",
     "--repeat": "repeated frames are for timing one process; use gridrt",
     "--list-devices": "list devices with gridrt on each machine",
     "--force": "-o is required, and replaces an existing file as gridrt's -o does",
+    "--format": "the output's format is -o's extension",
     "--version": "ask gridrt",
 }
+REFUSED_FLAGS = {"--force", "--list-devices", "--version"}
 OUTPUT_EXTENSIONS = (".png", ".jpg", ".jpeg", ".exr", ".tif", ".tiff")
 # A printf conversion of the frame number in a sequence's -o: %d or %04d.
 FRAME_CONVERSION = re.compile(r"%0?\d*d")
@@ -51,24 +65,41 @@ def parse_frames(text):
 def parser():
     p = OneLineParser(
         prog="gridrt-farm", add_help=True, allow_abbrev=False,
-        usage="gridrt-farm [--scheduler tcp://HOST:PORT] [--tiles NXxNY] [--frames A:B] "
-              "[--gridrt PATH] [SCENE] -o OUT [gridrt options...]",
+        usage="gridrt-farm [--scheduler tls://HOST:PORT --tls-ca-file CA --tls-cert CERT "
+              "--tls-key KEY] [--tiles NXxNY] [--frames A:B] [--gridrt PATH] [SCENE] -o OUT "
+              "[gridrt options...]",
         description="Renders a gridrt job's tiles and frames on a Dask cluster and merges "
                     "each frame into OUT, bit for bit what one gridrt process writes.",
-        epilog="Every other option goes to gridrt on every task (gridrt --help); the farm "
-               "sets --crop, --crop-output, --width, --height and -q itself. docs/farm.md.")
-    p.add_argument("--scheduler", metavar="tcp://HOST:PORT", help="the Dask scheduler, tcp://HOST:PORT; without it a "
+        epilog="gridrt's options go to gridrt on every task (gridrt --help); the farm "
+               "sets --crop, --crop-output, --width, --height and -q itself and refuses "
+               "those it cannot honour or does not know. docs/farm.md.")
+    p.add_argument("--scheduler", metavar="tls://HOST:PORT", help="the Dask scheduler, "
+                   "tls://HOST:PORT (tcp:// on loopback, or with --insecure); without it a "
                    "local cluster of --workers processes is started on this machine")
+    p.add_argument("--tls-ca-file", metavar="CA", help="tls://: the certificate authority "
+                   "the scheduler's certificate must be signed by (PEM)")
+    p.add_argument("--tls-cert", metavar="CERT", help="tls://: this client's certificate "
+                   "(PEM), signed by the CA the scheduler trusts")
+    p.add_argument("--tls-key", metavar="KEY", help="tls://: the private key of --tls-cert")
+    p.add_argument("--insecure", action="store_true", help="allow tcp:// to an address that "
+                   "is not loopback: unencrypted, and whoever reaches the scheduler runs code "
+                   "on every worker")
+    p.add_argument("--connect-timeout", type=float, default=10.0, metavar="SECONDS",
+                   help="how long to try to reach --scheduler (default 10)")
+    p.add_argument("--strict", action="store_true", help="refuse the job when a worker runs "
+                   "another gridrt build (by default it is left out, with a warning)")
     p.add_argument("--workers", type=int, default=2, metavar="N",
                    help="local cluster: worker processes (default 2)")
     p.add_argument("--tiles", type=parse_tiles, default=None, metavar="NXxNY",
                    help="tiles of each frame, NXxNY (default 4x4 for one frame, 1x1 with --frames)")
     p.add_argument("--frames", type=parse_frames, default=None, metavar="A:B",
                    help="frames A:B of an animation (gridrt --frames); OUT a printf pattern")
-    p.add_argument("--gridrt", metavar="PATH", help="the gridrt the workers run (default: the build's "
-                   "build/gridrt beside this tool)")
-    p.add_argument("--merge-tiles", metavar="PATH", help="the gridrt-merge-tiles that merges the "
-                   "frames here (default: tools/gridrt-merge-tiles of gridrt's build)")
+    p.add_argument("--gridrt", metavar="PATH", help="the gridrt the workers run (default: "
+                   "the gridrt beside gridrt-farm, else this source tree's build/gridrt, "
+                   "else gridrt on PATH; on each worker alike)")
+    p.add_argument("--merge-tiles", metavar="PATH", help=f"the tile merger ({MERGE_TILES}) "
+                   "that merges the frames here (default: the one beside gridrt, in gridrt's "
+                   "build, beside this tool, or on PATH)")
     p.add_argument("--shared-scene", action="store_true",
                    help="the workers read SCENE from its path (a shared file system) "
                    "instead of receiving it with the tasks")
@@ -80,7 +111,8 @@ def parser():
                    help="a task gridrt fails is tried again on another worker this many "
                    "times at most (default 2)")
     p.add_argument("--wait-for-workers", type=float, default=60.0, metavar="SECONDS",
-                   help="how long the job waits while no worker is alive (default 60)")
+                   help="how long the job waits while no worker of its gridrt build is alive "
+                   "(default 60)")
     p.add_argument("--farm-stats", metavar="FILE", help="write the job's statistics as JSON")
     p.add_argument("-o", "--output", required=True, metavar="OUT", help="output image, or a printf pattern "
                    "(out_%%04d.png) with --frames")
@@ -97,8 +129,11 @@ def split_gridrt_options(tokens):
             if "=" in t and t.startswith("--"):
                 flag, value = t.split("=", 1)
                 options.append((flag, value))
-            elif t in GRIDRT_FLAGS:
+            elif t in FORWARDED_FLAGS or t in REFUSED_FLAGS:
                 options.append((t, None))
+            elif t not in FORWARDED_VALUES and t not in REFUSED:
+                raise UsageError(f"{t}: not a gridrt option the farm passes on "
+                                 "(gridrt-farm --help, docs/farm.md)")
             else:
                 if k + 1 >= len(tokens):
                     raise UsageError(f"{t}: expected a value")
@@ -149,6 +184,8 @@ class FarmCommand:
                                if f not in ("--width", "--height", "-q", "--quiet")]
         if self.workers < 1:
             raise UsageError(f"--workers: expected at least 1, got {self.workers}")
+        if not self.connect_timeout > 0:
+            raise UsageError(f"--connect-timeout: expected seconds > 0, got {self.connect_timeout}")
         if not self.wait_for_workers > 0:
             raise UsageError(f"--wait-for-workers: expected seconds > 0, got {self.wait_for_workers}")
         if self.retries < 0:

@@ -5,24 +5,15 @@ import json
 import os
 import sys
 
-from . import cluster
+from . import cluster, executables, worker_task
+from .build_check import BuildRefused
 from .command_line import FarmCommand, UsageError
 from .job import FarmJob, JobFailed, summary_numbers
 from .merge import MergeError
 from .progress import summary_line
+from .security import connection_security
 from .scene_bundle import DEFAULT_HEIGHT, DEFAULT_WIDTH, SceneBundle, SceneError, camera_widths
 from .tiles import split
-
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-BUILT_GRIDRT = os.path.join(ROOT, "build", "gridrt")
-
-
-def merge_tiles_beside(gridrt):
-    """tools/gridrt-merge-tiles of the build the gridrt comes from, else of this tree's build."""
-    beside = os.path.join(os.path.dirname(gridrt), "tools", "gridrt-merge-tiles")
-    return beside if os.path.isfile(beside) else os.path.join(ROOT, "build", "tools",
-                                                              "gridrt-merge-tiles")
-
 
 def image_size(cmd, document):
     """As gridrt sizes it: as given; with neither --width nor --height, the scene camera's
@@ -49,26 +40,36 @@ def prepare_scene(cmd):
     return shipped, cmd.scene, bundle.document
 
 
-def run(argv):
+def run(argv, program):
     cmd = FarmCommand(argv)
-    gridrt = os.path.abspath(cmd.gridrt) if cmd.gridrt else BUILT_GRIDRT
-    if not cmd.scheduler and not os.access(gridrt, os.X_OK):
-        raise UsageError(f"--gridrt: '{gridrt}' is not an executable (build it, or name one)")
-    merge_tiles = cmd.merge_tiles or merge_tiles_beside(gridrt)
-    if not os.access(merge_tiles, os.X_OK):
-        raise UsageError(f"gridrt-merge-tiles is not built at '{merge_tiles}'")
+    security = connection_security(cmd)
+    candidates = executables.gridrt_candidates(program, cmd.gridrt)
+    here = executables.first_executable(candidates)
+    if not cmd.scheduler and here is None:
+        raise UsageError(f"--gridrt: no gridrt at {' nor '.join(candidates)} (build it, or "
+                         "name one)")
+    merge_tiles = cmd.merge_tiles or executables.merge_tiles_for(here, program)
+    if not merge_tiles or not os.access(merge_tiles, os.X_OK):
+        raise UsageError(f"{executables.MERGE_TILES} is not found beside gridrt nor on PATH "
+                         f"({merge_tiles or 'give --merge-tiles'})")
+    # The job's build: the gridrt here; else the one most workers run (build_check.py).
+    expected = worker_task.gridrt_identity([here]) if here else None
+    if expected is not None and "error" in expected:
+        raise UsageError(f"--gridrt: {expected['error']}")
     scene, shown, document = prepare_scene(cmd)
     size = image_size(cmd, document)
     try:
         split(size[0], size[1], *cmd.tiles)
     except ValueError as e:
         raise UsageError(f"--tiles: {e}") from None
-    client, local = cluster.open_client(cmd.scheduler, cmd.workers)
+    client, local = cluster.open_client(cmd.scheduler, cmd.workers, security,
+                                        cmd.connect_timeout)
     try:
         dashboard = cluster.dashboard_address(client)
         if dashboard and not cmd.quiet:
             print(f"gridrt-farm: dashboard {dashboard}", file=sys.stderr)
-        stats = FarmJob(client, cmd, size, scene, shown, gridrt, merge_tiles).run()
+        stats = FarmJob(client, cmd, size, scene, shown, candidates, expected,
+                        merge_tiles).run()
     finally:
         cluster.close(client, local)
     if cmd.farm_stats:
@@ -79,13 +80,14 @@ def run(argv):
     return 0
 
 
-def main(argv):
+def main(argv, program=sys.argv[0]):
+    """program: the path the farm was started as (gridrt is looked for beside it)."""
     try:
-        return run(argv)
+        return run(argv, program)
     except UsageError as e:
         print(f"gridrt-farm: {e}", file=sys.stderr)
         return 2
-    except (SceneError, cluster.ClusterError, MergeError) as e:
+    except (SceneError, cluster.ClusterError, MergeError, BuildRefused) as e:
         print(f"gridrt-farm: {e}", file=sys.stderr)
         return 1
     except JobFailed as e:

@@ -38,7 +38,8 @@ class FrameTiles:
         self.discard()
         if proc.returncode != 0:
             lines = [l for l in proc.stderr.splitlines() if l.strip()]
-            raise MergeError(lines[-1] if lines else f"gridrt-merge-tiles exited {proc.returncode}")
+            raise MergeError(lines[-1] if lines else
+                             f"{os.path.basename(merge_tiles)} exited {proc.returncode}")
 
     def discard(self):
         if self.folder is not None:

@@ -4,6 +4,8 @@ done, and the closing summary."""
 import sys
 import time
 
+from .build_check import short
+
 BAR_WIDTH = 24
 REDRAW_SECONDS = 0.5
 
@@ -44,7 +46,10 @@ def summary_line(stats):
     seconds = stats["seconds"]
     rate = stats["rays"] / seconds / 1e6 if seconds > 0 else 0.0
     kept = f", {stats['frames_kept']} kept" if stats["frames_kept"] else ""
+    build = f" by gridrt {stats['gridrt_version']} build {short(stats['build'])}" \
+        if stats.get("build") else ""
+    left = len(stats.get("workers_left_out") or {})
     return (f"gridrt-farm: {stats['frames_written']} frame(s) written{kept}, "
             f"{stats['tasks']} tasks ({stats['retries']} retried, {stats['workers_lost']} "
-            f"workers lost) on {stats['workers_seen']} workers in {seconds:.2f} s, "
-            f"{rate:.3g} Mrays/s across the cluster -> {stats['output']}")
+            f"workers lost, {left} left out) on {stats['workers_seen']} workers{build} in "
+            f"{seconds:.2f} s, {rate:.3g} Mrays/s across the cluster -> {stats['output']}")

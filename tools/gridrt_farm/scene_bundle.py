@@ -1,12 +1,13 @@
 """The scene as the workers get it: the .gltf/.glb and the files it names by relative URI
 (buffers, images), read here and shipped with the tasks; and the image size a scene's
 camera gives when neither --width nor --height is given."""
-import hashlib
 import json
 import math
 import os
 import struct
 import urllib.parse
+
+from .worker_task import bundle_digest
 
 GLB_MAGIC = b"glTF"
 GLB_JSON_CHUNK = 0x4E4F534A  # "JSON", little-endian
@@ -66,10 +67,7 @@ class SceneBundle:
                     self.files[name] = f.read()
             except OSError:
                 pass  # gridrt reports the missing file, as it would alone
-        digest = hashlib.sha256()
-        for name in sorted(self.files):
-            digest.update(name.encode() + b"\0" + hashlib.sha256(self.files[name]).digest())
-        self.digest = digest.hexdigest()[:32]
+        self.digest = bundle_digest(self.files)
         self.main = os.path.basename(path)
 
     def nbytes(self):
