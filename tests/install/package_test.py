@@ -60,7 +60,8 @@ class Package(unittest.TestCase):
     def check_control_file(self):
         fields = self.control()
         self.assertEqual(fields["Package"], "gridrt")
-        version = run([BUILT_GRIDRT, "--version"]).stdout.split()[-1]
+        # --version: "gridrt X.Y.Z", then the build and kernel digests.
+        version = run([BUILT_GRIDRT, "--version"]).stdout.splitlines()[0].split()[-1]
         self.assertTrue(fields["Version"].startswith(version), fields["Version"])
         self.assertEqual(os.path.basename(self.deb),
                          f"gridrt_{fields['Version']}_{fields['Architecture']}.deb")
