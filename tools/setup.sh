@@ -24,6 +24,8 @@ PACKAGES=(
   libgtest-dev libcli11-dev nlohmann-json3-dev libhwy-dev libtbb-dev
   libdraco-dev libmeshoptimizer-dev libassimp-dev
   python3 python3-venv python3-distributed python3-psutil
+  libsdl2-dev                # the window of gridrt --view (a module only --view loads)
+  xvfb xdotool x11-apps      # the viewer's tests: a virtual display, its input, xwd
 )
 if [ "$bench" -eq 1 ]; then PACKAGES+=(libembree-dev); fi
 
