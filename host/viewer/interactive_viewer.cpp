@@ -336,6 +336,7 @@ int InteractiveViewer::run() {
 }
 
 void InteractiveViewer::update(Change& change) {
+  Stopwatch clock;
   if (change == Change::Scene) loadSceneForView();
   if (change >= Change::Prepared) {
     prepare();
@@ -348,6 +349,9 @@ void InteractiveViewer::update(Change& change) {
   if (change >= Change::Renderer) {
     film_.restart();
     note_.clear();
+    status_.setup_ms = clock.ms();
+  } else if (film_.samples() > 0) {
+    status_.setup_ms = 0;  // a further sample of the same view
   }
   change = Change::None;
 }

@@ -37,6 +37,10 @@ std::string skip_reason;
 class ViewerWindow : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
+#ifndef GRIDRT_HAS_WINDOW_MODULE
+    skip_reason = "gridrt was built without its window module (SDL2: libsdl2-dev)";
+    return;
+#endif
     const std::string missing = missingXPrograms();
     if (!missing.empty()) {
       skip_reason = "needs " + missing + " (tools/setup.sh installs xvfb, xdotool, x11-apps)";
@@ -114,7 +118,8 @@ bool lookAtOfCommand(const std::string& command, LookAt& view) {
 // seen from above), and the change of its elevation.
 double yawDegrees(const LookAt& a, const LookAt& b) {
   const glm::dvec3 u = glm::dvec3(a.eye - a.target), v = glm::dvec3(b.eye - b.target);
-  return (std::atan2(v.x, v.z) - std::atan2(u.x, u.z)) * 180.0 / M_PI;
+  const double turn = (std::atan2(v.x, v.z) - std::atan2(u.x, u.z)) * 180.0 / M_PI;
+  return turn > 180.0 ? turn - 360.0 : turn <= -180.0 ? turn + 360.0 : turn;
 }
 double elevationDegrees(const LookAt& a) {
   const glm::dvec3 u = glm::dvec3(a.eye - a.target);
