@@ -9,6 +9,7 @@
 
 #include "cl_runtime.h"
 #include "errors.h"
+#include "frame_sequence.h"
 #include "image_output.h"
 #include "key_bindings.h"
 #include "prepared_scene.h"
@@ -33,6 +34,10 @@ constexpr int kIdleWaitMs = 50;
 
 // The deepest --max-depth the ] key reaches (the command line's limit).
 constexpr int kMaxViewDepth = 64;
+
+// A time within this many frames of a frame's time is at that frame (frame / fps in double
+// is off the exact time by an ulp or so): the steps go to the frames of --frames.
+constexpr double kFrameSnap = 1e-6;
 
 // What an input changed, from the least to the most work it makes.
 enum class Change { None, Picture, Renderer, Prepared, Scene };
@@ -237,10 +242,15 @@ Change InteractiveViewer::act(ViewAction action, bool& quit) {
     case ViewAction::PlayPause:
       playing_ = !playing_;
       return o_.time ? Change::Picture : setTime(0.0);
-    case ViewAction::StepBack: playing_ = false; return setTime(o_.time.value_or(0.0) - 1.0 / o_.fps);
-    case ViewAction::StepForward:
+    case ViewAction::StepBack:
+    case ViewAction::StepForward: {
+      // To the frame before or after the time shown, as --frames numbers them.
       playing_ = false;
-      return setTime(o_.time.value_or(0.0) + 1.0 / o_.fps);
+      const double frame = o_.time.value_or(0.0) * o_.fps;
+      const long to = action == ViewAction::StepForward ? long(std::floor(frame + kFrameSnap)) + 1
+                                                        : long(std::ceil(frame - kFrameSnap)) - 1;
+      return setTime(frameTime(std::max(0L, to), o_.fps));
+    }
     case ViewAction::Snapshot:  // taken by the loop, once the view is up to date
       return Change::None;
     case ViewAction::Quit:

@@ -13,6 +13,7 @@
 #include <regex>
 #include <sstream>
 
+#include "animated_test_scene.h"
 #include "image_output.h"
 #include "run_command.h"
 #include "test_support.h"
@@ -228,6 +229,37 @@ TEST_F(ViewerWindow, ResizingTheWindowChangesTheImageSize) {
   ASSERT_EQ(shown.height, 90);
   EXPECT_TRUE(shown.rgb == imageCodes(rendered).rgb);
   viewer->keys({"q"});
+  EXPECT_EQ(viewer->waitForExit(kOutputWaitS), 0);
+}
+
+TEST_F(ViewerWindow, AnimationStepsPlaysAndPausesFromTheGivenTime) {
+  const std::string scene = dir_ + "/walk.gltf";
+  std::ofstream(scene) << makeAnimatedTestScene().animatedJson();
+  auto viewer = start({scene, "--time", "0.25", "-q"});
+  ASSERT_FALSE(window_.empty());
+  viewer->keys({"period", "p"});
+  // Frame 7 at 24 fps (0.25 s is frame 6); seven frames back stop at frame 0.
+  viewer->keys({"comma", "comma", "comma", "comma", "comma", "comma", "comma", "p"});
+  const std::vector<std::string> lines = viewer->outputLines(2, kOutputWaitS);
+  ASSERT_EQ(lines.size(), 2u) << viewer->errorOutput();
+  const std::regex time(R"(--time ([^ ]+))");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(lines[0], m, time)) << lines[0];
+  EXPECT_EQ(std::stod(m[1].str()), 7.0 / 24.0) << lines[0];
+  ASSERT_TRUE(std::regex_search(lines[1], m, time)) << lines[1];
+  EXPECT_EQ(std::stod(m[1].str()), 0.0) << lines[1];
+  // The posed scene's snapshot is the command line's image of that time.
+  std::string command = lines[0];
+  command.replace(command.find(scene), scene.size(), "SCENE");
+  std::vector<std::string> argv{gridrtBinary()};
+  std::istringstream words(command.substr(std::string("gridrt").size()));
+  for (std::string w; words >> w;) argv.push_back(w == "SCENE" ? scene : w);
+  argv.insert(argv.end(), {"-q", "-o", dir_ + "/cli.png"});
+  EXPECT_EQ(runCommand(argv).exit_code, 0) << joinArgs(argv);
+  EXPECT_TRUE(sameFileBytes(dir_ + "/walk_view_0000.png", dir_ + "/cli.png")) << lines[0];
+  viewer->keys({"space"});
+  EXPECT_FALSE(viewer->waitForTitle("(playing)", kOutputWaitS).empty());
+  viewer->keys({"space", "q"});
   EXPECT_EQ(viewer->waitForExit(kOutputWaitS), 0);
 }
 
