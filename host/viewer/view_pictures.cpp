@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "eight_bit_image.h"
 #include "image_output.h"
@@ -95,9 +96,17 @@ Picture aovPicture(ViewKind kind, const PrimaryAovs& aovs, int width, int height
   const size_t pixels = size_t(width) * height;
   Picture p{width, height, std::vector<unsigned char>(pixels * 3, 0)};
   switch (kind) {
-    case ViewKind::Depth:
-      return viridisPicture<float>(aovs.depth, width, height, 0.0f,
-                                   [](float d) { return d < 0.0f; });
+    case ViewKind::Depth: {
+      // From the nearest hit (purple) to the farthest (yellow); misses black.
+      float nearest = std::numeric_limits<float>::infinity(), farthest = 0.0f;
+      for (float d : aovs.depth)
+        if (d >= 0.0f) nearest = std::min(nearest, d), farthest = std::max(farthest, d);
+      const float range = farthest > nearest ? farthest - nearest : 1.0f;
+      parallelFor(size_t(0), std::min(pixels, aovs.depth.size()), [&](size_t k) {
+        if (aovs.depth[k] >= 0.0f) viridisColour((aovs.depth[k] - nearest) / range, &p.rgb[3 * k]);
+      });
+      return p;
+    }
     case ViewKind::Tests:
       return viridisPicture<float>(aovs.tests, width, height, 1.0f, [](float) { return false; });
     case ViewKind::ListLength:

@@ -1,6 +1,6 @@
 // What the window shows: the image, or one of the primary rays' AOVs as a picture, with
-// the false colours of tools/heatmap.py (a hashed colour per PE; viridis for counts and
-// depth, 0 .. the picture's largest value).
+// the false colours of tools/heatmap.py (a hashed colour per PE; viridis for counts, 0 ..
+// the picture's largest value), depth in viridis from the nearest hit to the farthest.
 #pragma once
 #include <cstdint>
 #include <string>

@@ -53,7 +53,7 @@ TEST(ViewPictures, EveryPeGetsItsOwnBrightColourAndAMissIsBlack) {
 TEST(ViewPictures, CountsAreScaledToTheLargest) {
   PrimaryAovs aovs;
   aovs.list_length = {0.0f, 1.0f, 2.0f, 4.0f};
-  aovs.depth = {-1.0f, 1.0f, 2.0f, 4.0f};
+  aovs.depth = {-1.0f, 1.0f, 2.5f, 4.0f};
   const Picture list = aovPicture(ViewKind::ListLength, aovs, 2, 2);
   unsigned char low[3], half[3], high[3];
   viridisColour(0.0f, low);
@@ -64,6 +64,9 @@ TEST(ViewPictures, CountsAreScaledToTheLargest) {
   EXPECT_EQ(colourOf(list, 3), (std::array<int, 3>{high[0], high[1], high[2]}));
   const Picture depth = aovPicture(ViewKind::Depth, aovs, 2, 2);
   EXPECT_EQ(colourOf(depth, 0), (std::array<int, 3>{0, 0, 0}));  // a miss
+  // Depth from the nearest hit to the farthest.
+  EXPECT_EQ(colourOf(depth, 1), (std::array<int, 3>{low[0], low[1], low[2]}));
+  EXPECT_EQ(colourOf(depth, 2), (std::array<int, 3>{half[0], half[1], half[2]}));
   EXPECT_EQ(colourOf(depth, 3), (std::array<int, 3>{high[0], high[1], high[2]}));
 }
 
