@@ -30,7 +30,7 @@ def fail(message):
 def start_xvfb():
     read_end, write_end = os.pipe()
     server = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0",
-                               "1024x768x24", "-nolisten", "tcp"], pass_fds=[write_end],
+                               "1024x768x24", "-noreset", "-ardelay", "600000", "-nolisten", "tcp"], pass_fds=[write_end],
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     os.close(write_end)
     with os.fdopen(read_end) as pipe:
@@ -97,10 +97,11 @@ def main():
                                   stdout=subprocess.DEVNULL)
         window = wait_for("the window", lambda: x(display, "xdotool", "search", "--onlyvisible",
                                                   "--name", "^gridrt").split()[:1])[0].decode()
+        x(display, "xdotool", "windowfocus", "--sync", window)
         pictures = []
         for number, view in enumerate(VIEWS):
             # P's note in the title comes with the first frame after it: the view is shown.
-            x(display, "xdotool", "key", "--window", window, str(number + 1), "p")
+            x(display, "xdotool", "key", "--delay", "20", str(number + 1), "p")
             note = "wrote %s_view_%04d.png" % (
                 os.path.splitext(os.path.basename(args.scene))[0] if args.scene else "gridrt", number)
             wait_for(view, lambda: note in x(display, "xdotool", "getwindowname", window).decode())
@@ -109,7 +110,7 @@ def main():
             pictures += [path, "--ch", "R,G,B", "--cut", "0,0,%d,%d" % (args.width - 1, args.height + 17)]
             if os.path.exists(FONT):
                 pictures += ["--text:x=4:y=%d:size=14:font=%s" % (args.height + 14, FONT), view]
-        x(display, "xdotool", "key", "--window", window, "q")
+        x(display, "xdotool", "key", "q")
         viewer.wait(WAIT_S)
         subprocess.run(["oiiotool"] + pictures + ["--mosaic:pad=4", "4x2", "-o", args.out], check=True)
         print("viewer_contact_sheet: %d views -> %s" % (len(VIEWS), args.out))

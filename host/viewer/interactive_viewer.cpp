@@ -40,7 +40,8 @@ constexpr int kMaxViewDepth = 64;
 constexpr double kFrameSnap = 1e-6;
 
 // What an input changed, from the least to the most work it makes.
-enum class Change { None, Picture, Renderer, Prepared, Scene };
+// Pose: the animation's time (the scene posed again); Scene: loaded again (another camera).
+enum class Change { None, Picture, Renderer, Prepared, Pose, Scene };
 
 Change atLeast(Change a, Change b) { return std::max(a, b); }
 
@@ -90,13 +91,17 @@ class InteractiveViewer {
   PrimaryAovs aovs_;  // sample 0's, as the command line's AOVs
   ProgressiveFilm film_;
   FrameStatus status_;
+  std::vector<SceneImage> images_;  // the scene's images, decoded once for every pose
+  bool warned_ = false;             // the scene's warnings are said once
   bool playing_ = false;
   std::string note_;  // said in the title until the view changes
 };
 
 void InteractiveViewer::loadSceneForView() {
   source_ = loadScene(o_, o_.time, scene_);
-  if (!o_.quiet) {
+  images_ = scene_.images;
+  if (!o_.quiet && !warned_) {
+    warned_ = true;
     for (const auto& w : source_.warnings) std::cerr << "gridrt: warning: " << w << '\n';
     for (const auto& w : scene_.warnings) std::cerr << "gridrt: warning: " << w << '\n';
   }
@@ -166,8 +171,10 @@ Change InteractiveViewer::moveTo(const LookAt& view) {
 }
 
 Change InteractiveViewer::setTime(double t) {
+  const bool posed = o_.time.has_value();
   o_.time = std::max(0.0, t);
-  return Change::Scene;
+  // The first time loads the animations (a still scene is loaded without them).
+  return posed ? Change::Pose : Change::Scene;
 }
 
 Change InteractiveViewer::act(ViewAction action, bool& quit) {
@@ -328,7 +335,7 @@ int InteractiveViewer::run() {
       change = atLeast(change, apply(e, quit));
       if (quit) return 0;
     }
-    if (playing_ && change < Change::Scene) {
+    if (playing_ && change < Change::Pose) {
       const double dt = animation_clock.ms() / 1000.0;
       change = atLeast(change, setTime(o_.time.value_or(0.0) + dt));
     }
@@ -347,7 +354,12 @@ int InteractiveViewer::run() {
 
 void InteractiveViewer::update(Change& change) {
   Stopwatch clock;
-  if (change == Change::Scene) loadSceneForView();
+  if (change == Change::Scene || (change == Change::Pose && !source_.animated)) {
+    loadSceneForView();
+  } else if (change == Change::Pose) {
+    scene_ = source_.animated->at(*o_.time);
+    scene_.images = images_;  // decoded once, as the command line's frames share them
+  }
   if (change >= Change::Prepared) {
     prepare();
     status_.triangles = scene_.triangleCount();
@@ -359,6 +371,10 @@ void InteractiveViewer::update(Change& change) {
   if (change >= Change::Renderer) {
     film_.restart();
     note_.clear();
+    if (playing_ && source_.animated && !source_.animated->moves()) {
+      playing_ = false;
+      note_ = "nothing moves";
+    }
     status_.setup_ms = clock.ms();
   } else if (film_.samples() > 0) {
     status_.setup_ms = 0;  // a further sample of the same view

@@ -146,7 +146,7 @@ TEST_F(ViewerWindow, SnapshotIsTheCommandLinesImageBitForBitAndSoIsTheWindow) {
   ASSERT_EQ(shown.height, kHeight);
   EXPECT_TRUE(shown.rgb == cli.rgb) << "the window differs from " << rendered;
   viewer->keys({"q"});
-  EXPECT_EQ(viewer->waitForExit(kOutputWaitS), 0);
+  EXPECT_EQ(viewer->waitForExit(kOutputWaitS), 0) << viewer->errorOutput();
 }
 
 TEST_F(ViewerWindow, ArrowKeyAndDragTurnTheCameraByTheDocumentedAngles) {
@@ -175,7 +175,7 @@ TEST_F(ViewerWindow, ArrowKeyAndDragTurnTheCameraByTheDocumentedAngles) {
   EXPECT_NEAR(glm::length(c.eye - c.target), glm::length(a.eye - a.target),
               1e-5 * glm::length(a.eye - a.target));
   viewer->keys({"Escape"});
-  EXPECT_EQ(viewer->waitForExit(kOutputWaitS), 0);
+  EXPECT_EQ(viewer->waitForExit(kOutputWaitS), 0) << viewer->errorOutput();
 }
 
 TEST_F(ViewerWindow, ViewKeysShowTheAovsHeatMaps) {
@@ -210,7 +210,7 @@ TEST_F(ViewerWindow, ViewKeysShowTheAovsHeatMaps) {
   EXPECT_TRUE(list_view.rgb == want_list.rgb) << "the listlen view is not the listlen AOV's";
   EXPECT_FALSE(pe_view.rgb == imageCodes(image).rgb);
   viewer->keys({"q"});
-  EXPECT_EQ(viewer->waitForExit(kOutputWaitS), 0);
+  EXPECT_EQ(viewer->waitForExit(kOutputWaitS), 0) << viewer->errorOutput();
 }
 
 TEST_F(ViewerWindow, ResizingTheWindowChangesTheImageSize) {
@@ -229,7 +229,7 @@ TEST_F(ViewerWindow, ResizingTheWindowChangesTheImageSize) {
   ASSERT_EQ(shown.height, 90);
   EXPECT_TRUE(shown.rgb == imageCodes(rendered).rgb);
   viewer->keys({"q"});
-  EXPECT_EQ(viewer->waitForExit(kOutputWaitS), 0);
+  EXPECT_EQ(viewer->waitForExit(kOutputWaitS), 0) << viewer->errorOutput();
 }
 
 TEST_F(ViewerWindow, AnimationStepsPlaysAndPausesFromTheGivenTime) {
@@ -260,7 +260,40 @@ TEST_F(ViewerWindow, AnimationStepsPlaysAndPausesFromTheGivenTime) {
   viewer->keys({"space"});
   EXPECT_FALSE(viewer->waitForTitle("(playing)", kOutputWaitS).empty());
   viewer->keys({"space", "q"});
-  EXPECT_EQ(viewer->waitForExit(kOutputWaitS), 0);
+  EXPECT_EQ(viewer->waitForExit(kOutputWaitS), 0) << viewer->errorOutput();
+}
+
+// A triangle seen by two camera nodes: C goes through them in order.
+std::string twoCameraScene() {
+  const std::vector<float> triangle{-1, -1, 0, 1, -1, 0, 0, 1, 0};
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1,2]}],)"
+         R"("nodes":[{"mesh":0},{"camera":0,"translation":[0,0,3]},)"
+         R"({"camera":0,"translation":[0.5,0.2,3]}],)"
+         R"("cameras":[{"type":"perspective","perspective":{"yfov":0.7,"znear":0.1}}],)"
+         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+         R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",)"
+         R"("min":[-1,-1,0],"max":[1,1,0]}],"bufferViews":[{"buffer":0,"byteLength":36}],)"
+         R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" +
+         base64(bytesOf(triangle)) + R"("}]})";
+}
+
+TEST_F(ViewerWindow, CameraKeyCyclesTheGltfCamerasAndResetReturns) {
+  const std::string scene = dir_ + "/two.gltf";
+  std::ofstream(scene) << twoCameraScene();
+  auto viewer = start({scene, "-q"});
+  ASSERT_FALSE(window_.empty());
+  viewer->keys({"c", "p", "c", "p", "Left", "r", "p"});
+  const std::vector<std::string> lines = viewer->outputLines(3, kOutputWaitS);
+  ASSERT_EQ(lines.size(), 3u) << viewer->errorOutput();
+  EXPECT_NE(lines[0].find("--camera 1"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[1].find("--camera 0"), std::string::npos) << lines[1];
+  // R: the scene's first camera as the command line gave it, no --camera, no --look-at.
+  EXPECT_EQ(lines[2], "gridrt " + scene + " --width 160 --height 120");
+  const std::string second = renderPrinted(lines[0], "second.png");
+  EXPECT_TRUE(sameFileBytes(dir_ + "/two_view_0000.png", second));
+  EXPECT_FALSE(sameFileBytes(dir_ + "/two_view_0001.png", second));
+  viewer->keys({"q"});
+  EXPECT_EQ(viewer->waitForExit(kOutputWaitS), 0) << viewer->errorOutput();
 }
 
 TEST(ViewerWithoutDisplay, SaysSoInOneLineAndExitsOne) {

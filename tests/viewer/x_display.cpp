@@ -84,8 +84,12 @@ VirtualDisplay::VirtualDisplay() {
     return;
   }
   const std::string fd = std::to_string(fds[1]);
-  std::vector<std::string> argv{"Xvfb", "-displayfd", fd, "-screen", "0", "1024x768x24",
-                                "-nolisten", "tcp"};
+  // -noreset: without it Xvfb resets when its last client leaves (xdotool, between two
+  // commands), and a viewer connecting then is refused. -ardelay: no key repeats itself
+  // when xdotool, on a busy machine, is late to release it.
+  std::vector<std::string> argv{"Xvfb",     "-displayfd", fd,      "-screen", "0",
+                                "1024x768x24", "-noreset", "-ardelay", "600000", "-nolisten",
+                                "tcp"};
   std::vector<char*> args;
   for (auto& a : argv) args.push_back(a.data());
   args.push_back(nullptr);
@@ -165,7 +169,11 @@ std::string ViewerProcess::waitForWindow(double timeout_s) {
   const auto start = std::chrono::steady_clock::now();
   while (secondsSince(start) < timeout_s) {
     std::istringstream ids(shellOutput(display_, "xdotool search --onlyvisible --name '^gridrt'"));
-    if (ids >> window_) return window_;
+    if (ids >> window_) {
+      // The keys go to the focused window as a keyboard's would (XTEST): focus it.
+      shellOutput(display_, "xdotool windowfocus --sync " + window_);
+      return window_;
+    }
     if (waitForExit(0) >= 0) return "";
     pause(0.05);
   }
@@ -173,7 +181,7 @@ std::string ViewerProcess::waitForWindow(double timeout_s) {
 }
 
 void ViewerProcess::keys(const std::vector<std::string>& names) {
-  std::string command = "xdotool key --delay 20 --window " + window_;
+  std::string command = "xdotool key --delay 20";
   for (const auto& n : names) command += " " + n;
   shellOutput(display_, command);
 }

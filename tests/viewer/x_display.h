@@ -36,7 +36,8 @@ class ViewerProcess {
 
   // The window's X id once it is mapped and titled "gridrt...", "" after timeout_s.
   std::string waitForWindow(double timeout_s);
-  // xdotool key --window WINDOW KEYS... (X key names: "Left", "p", "5").
+  // xdotool key KEYS... to the window, focused since waitForWindow (X key names: "Left",
+  // "p", "5").
   void keys(const std::vector<std::string>& names);
   // Any xdotool command line against the display ("mousemove --window W 10 10 ...").
   int xdotool(const std::string& arguments);
