@@ -1,4 +1,4 @@
-// merge_tiles OUT IN1 [IN2 ...]: pastes window-only tiles rendered with
+// gridrt-merge-tiles OUT IN1 [IN2 ...]: pastes window-only tiles rendered with
 //   gridrt --crop X0,Y0,X1,Y1 --crop-output window -o tile.exr
 // into one image. Each tile says where it lies through its data window (OpenImageIO
 // ImageSpec x, y inside full_width x full_height; EXR stores it natively, TIFF as position
@@ -111,7 +111,7 @@ LayeredImage paste(const std::vector<Tile>& tiles) {
   size_t uncovered = 0;
   for (int o : owner) uncovered += o < 0;
   if (uncovered)
-    std::cerr << "merge_tiles: warning: " << uncovered << " of " << owner.size()
+    std::cerr << "gridrt-merge-tiles: warning: " << uncovered << " of " << owner.size()
               << " pixels are covered by no tile and are zero\n";
   return out;
 }
@@ -120,7 +120,7 @@ LayeredImage paste(const std::vector<Tile>& tiles) {
 
 int main(int argc, char** argv) {
   const char* usage =
-      "usage: merge_tiles OUT.exr TILE1.exr [TILE2.exr ...]\n"
+      "usage: gridrt-merge-tiles OUT.exr TILE1.exr [TILE2.exr ...]\n"
       "  pastes tiles written by 'gridrt --crop X0,Y0,X1,Y1 --crop-output window';\n"
       "  OUT may be .exr/.tif/.tiff (exact) or .png/.jpg (encoded as gridrt does)\n";
   if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
   const std::string out = argv[1];
   const std::optional<gridrt::ImageFormat> format = gridrt::formatOfPath(out);
   if (!format || *format == gridrt::ImageFormat::Hdr) {
-    std::cerr << "merge_tiles: the output must be .exr, .tif, .tiff, .png, .jpg or .jpeg, got '"
+    std::cerr << "gridrt-merge-tiles: the output must be .exr, .tif, .tiff, .png, .jpg or .jpeg, got '"
               << out << "'\n";
     return 2;
   }
@@ -147,10 +147,10 @@ int main(int argc, char** argv) {
     // Written as gridrt writes its image: 8-bit files from the colour (and alpha).
     gridrt::writeLayeredImage(out, paste(tiles), gridrt::OutputKind::Image);
   } catch (const MergeError& e) {
-    std::cerr << "merge_tiles: " << e.what() << '\n';
+    std::cerr << "gridrt-merge-tiles: " << e.what() << '\n';
     return 1;
   } catch (const gridrt::RenderError& e) {
-    std::cerr << "merge_tiles: " << e.what() << '\n';
+    std::cerr << "gridrt-merge-tiles: " << e.what() << '\n';
     return 1;
   }
   return 0;

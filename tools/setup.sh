@@ -2,7 +2,11 @@
 # Sets GridRT up on a Debian machine: installs the Debian packages that are missing
 # (as root, or through sudo; otherwise prints the exact command to run), then configures
 # a Release build in build/ and builds the renderer, tools and tests. The render farm
-# (tools/gridrt-farm) runs on Debian's python3 with python3-distributed (Dask).
+# (tools/gridrt-farm) runs on Debian's python3 with python3-distributed (Dask); the Python
+# module (python/, docs/python.md) builds for it with pybind11-dev and python3-numpy, and
+# its tests read the program's EXR with python3-openimageio. help2man makes the man page;
+# dpkg-dev and file are CPack's for the Debian package; zsh checks the zsh completion
+# (docs/install.md).
 # With --bench it also sets up the benchmark harness: its Python packages (matplotlib,
 # numpy, OpenImageIO from PyPI into .venv/, via tools/setup_python.sh) and Embree 3
 # (Debian's libembree-dev), the peer tools/bench.py measures beside GridRT.
@@ -24,6 +28,8 @@ PACKAGES=(
   libgtest-dev libcli11-dev nlohmann-json3-dev libhwy-dev libtbb-dev
   libdraco-dev libmeshoptimizer-dev libassimp-dev
   python3 python3-venv python3-distributed python3-psutil
+  pybind11-dev python3-dev python3-numpy python3-openimageio
+  help2man dpkg-dev file zsh
   libsdl2-dev                # the window of gridrt --view (a module only --view loads)
   xvfb xdotool x11-apps      # the viewer's tests: a virtual display, its input, xwd
 )

@@ -391,7 +391,7 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
   app.add_option("--fov", o.fov_degrees, "vertical field of view in degrees")
       ->check(numberIn(0.01, 179.0));
   app.add_option("--crop", raw.crop,
-                 "X0,Y0,X1,Y1 render only pixels [X0,X1) x [Y0,Y1) (tiles: tools/merge_tiles)");
+                 "X0,Y0,X1,Y1 render only pixels [X0,X1) x [Y0,Y1) (tiles: gridrt-merge-tiles)");
   app.add_option("--crop-output", raw.crop_output,
                  "with --crop: full (full-size image, zero outside) or window (.exr/.tif only, "
                  "offset kept in the data window)")

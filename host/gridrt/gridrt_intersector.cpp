@@ -7,6 +7,7 @@
 
 #include "parallel_loops.h"
 #include "prepared_triangles.h"
+#include "ray_tests.h"
 #include "segment_culling.h"
 #include "stopwatch.h"
 
@@ -335,9 +336,8 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   // Phase 2: per ray, the smallest (t, prim) over its PEs' in-voxel hits
   // (PacketResults::keepNearer), in two steps that read each result once whatever the
   // thread count: each slice takes the tasks whose packets start in its share of the
-  // packets, counts their tests and sends each hit lane (and, for the diagnostics, each
-  // lane the interrupt skipped) to the slice that owns its ray; then each slice reduces
-  // what was sent to its rays. keepNearer is a total order on (t, prim, PE), so the hits
+  // packets, counts their tests and sends each hit lane to the slice that owns its ray;
+  // then each slice reduces what was sent to its rays. keepNearer is a total order on (t, prim, PE), so the hits
   // do not depend on the order the lanes arrive in.
   clock.restart();
   if (diagnostics) {
@@ -374,7 +374,6 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
           }
         };
         send(m.hit & ~m.skipped, task.pe);
-        if (diagnostics) send(m.skipped, -1 - task.pe);
       }
     }
   });
@@ -386,23 +385,17 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
       hits[r] = GrHit{rays[r].tmax, -1, 0.0f, 0.0f};
       const int length = lists_.lengthOf(r);
       tally.longest = std::max<uint64_t>(tally.longest, uint64_t(length));
-      if (diagnostics) {
-        diagnostics->list_length[r] = length;
-        int ray_tests = 0;
-        const ListEntry* entries = lists_.entriesOf(r);
-        for (int e = 0; e < length; ++e) ray_tests += grid_.triangleCountOfPe(entries[e].pe);
-        diagnostics->tests[r] = ray_tests;  // less its skipped pairs, below
-      }
+      if (diagnostics) diagnostics->list_length[r] = length;
     }
     std::vector<int>* winners = diagnostics ? &diagnostics->winning_pe : nullptr;
     for (int from = 0; from < count; ++from)
-      for (const SentLane& sent : sent_lanes_[size_t(from) * count + me]) {
-        if (sent.pe >= 0)
-          results.keepNearer(sent.lane, sent.pe, hits[sent.ray],
-                             winners ? &(*winners)[sent.ray] : nullptr);
-        else
-          diagnostics->tests[sent.ray] -= grid_.triangleCountOfPe(-1 - sent.pe);
-      }
+      for (const SentLane& sent : sent_lanes_[size_t(from) * count + me])
+        results.keepNearer(sent.lane, sent.pe, hits[sent.ray],
+                           winners ? &(*winners)[sent.ray] : nullptr);
+    if (diagnostics)
+      for (size_t r = lo; r < hi; ++r)
+        diagnostics->tests[r] = testsToWinnerInList(grid_, lists_.entriesOf(r), lists_.lengthOf(r),
+                                                    diagnostics->winning_pe[r]);
   });
   const SliceTally sum = SliceTally::sumOf(tallies);
   max_list_length_ = std::max(max_list_length_, sum.longest);
@@ -627,6 +620,10 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
   thread_pe_pairs_.resize(parallelSliceCount());
   std::vector<SliceTally> tallies(thread_pe_pairs_.size());
   std::vector<int>* winners = diagnostics ? &diagnostics->winning_pe : nullptr;
+  // For the diagnostics, per slice the (ray, PE) pairs it read that the ray pierced: the
+  // `tests` AOV counts those up to the winner once every chunk has run (ray_tests.h). A
+  // ray's slot lies in one slice, so each slice holds all the pairs of its rays.
+  std::vector<std::vector<PiercedPe>> slice_pierced(diagnostics ? tallies.size() : 0);
   GrCullFrame culling{};
   const size_t chunks = bundles.chunkCount();
   if (chunks > 1) ++counters_.split_batches;
@@ -743,10 +740,9 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
           pe_pairs[task.pe] += popcount(pierced);
           if (diagnostics)
             for (int bits = pierced; bits; bits &= bits - 1) {
-              const int k = __builtin_ctz(unsigned(bits));
-              const int ray = bundles.ray_of[base + k];
+              const int ray = bundles.ray_of[base + __builtin_ctz(unsigned(bits))];
               ++diagnostics->list_length[ray];
-              if (tested & (1 << k)) diagnostics->tests[ray] += cost;
+              slice_pierced[me].push_back(PiercedPe{ray, task.pe});
             }
           results.reduceHits(
               m.hit & in_range, size_t(task.out_first + p * GR_PACKET_LANES), task.pe,
@@ -757,6 +753,9 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     if (!last_chunk) counters_.reduce_ms += clock.ms();
   }
   if (diagnostics) {
+    parallelSlices(int(slice_pierced.size()), [&](int me, int) {
+      addTestsToWinner(grid_, rays, slice_pierced[me], diagnostics->winning_pe, diagnostics->tests);
+    });
     list_length_known_ = true;
     for (int length : diagnostics->list_length)
       max_list_length_ = std::max<uint64_t>(max_list_length_, length);

@@ -1,6 +1,6 @@
 // --crop X0,Y0,X1,Y1: a rectangular window of the image: the half-open pixel
 // range [x0, x1) x [y0, y1), columns from the left, rows from the top, in the coordinates
-// of the full image. Rendering tiles with it and pasting them (tools/merge_tiles) gives
+// of the full image. Rendering tiles with it and pasting them (gridrt-merge-tiles) gives
 // the full render bit for bit, because each pixel's rays do not depend on the window.
 //
 // The window itself is the Renderer's PixelWindow (RenderSettings::crop traces only its

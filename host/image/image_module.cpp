@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "errors.h"
+#include "module_search.h"
 
 namespace gridrt {
 namespace {
@@ -14,12 +15,18 @@ namespace {
 namespace fs = std::filesystem;
 
 const ImageCodec* loadCodec() {
-  std::vector<std::string> candidates;
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) candidates.push_back((exe.parent_path() / GRIDRT_IMAGE_CODEC_FILE).string());
-  candidates.push_back(GRIDRT_IMAGE_CODEC_PATH);
+  std::vector<std::string> candidates = moduleSearchPaths(
+      GRIDRT_IMAGE_CODEC_FILE, GRIDRT_MODULE_DIR_FROM_BIN, GRIDRT_IMAGE_CODEC_PATH);
+  // Beside the shared object that holds this code, when it is not the executable (the
+  // Python module's extension: python/CMakeLists.txt installs the module beside it),
+  // before the build's own path.
+  Dl_info self{};
+  if (dladdr(reinterpret_cast<void*>(&loadCodec), &self) && self.dli_fname &&
+      fs::path(self.dli_fname).is_absolute())
+    candidates.insert(candidates.end() - 1,
+                      (fs::path(self.dli_fname).parent_path() / GRIDRT_IMAGE_CODEC_FILE).string());
   std::string why;
+  std::error_code ec;
   for (const std::string& path : candidates) {
     if (!fs::exists(path, ec)) continue;
     void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
@@ -31,7 +38,9 @@ const ImageCodec* loadCodec() {
     if (entry) return entry();
     why = path + ": no " + GRIDRT_IMAGE_CODEC_ENTRY;
   }
-  if (why.empty()) why = "not found beside the executable nor at " GRIDRT_IMAGE_CODEC_PATH;
+  if (why.empty())
+    why = "not found beside the executable, in its " GRIDRT_MODULE_DIR_FROM_BIN
+          " nor at " GRIDRT_IMAGE_CODEC_PATH;
   throw RenderError("cannot load the image module " GRIDRT_IMAGE_CODEC_FILE ": " + why);
 }
 

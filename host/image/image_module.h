@@ -1,6 +1,7 @@
 // The image module (image_codec.h), loaded with dlopen on first use and kept for the life
 // of the process. It is looked for beside the running executable (a relocated gridrt
-// carries it along), then where the build put it.
+// carries it along), in the installed tree's module folder, then where the build put it
+// (module_search.h).
 #pragma once
 #include "image_codec.h"
 

@@ -66,7 +66,7 @@ struct IntersectCounters {
 
 // Per-ray diagnostics for AOVs, filled when requested.
 struct RayDiagnostics {
-  std::vector<int> tests;        // ray-triangle tests the ray cost
+  std::vector<int> tests;        // tests of its PEs up to the winner (gridrt: ray_tests.h)
   std::vector<int> winning_pe;   // PE that produced the hit, -1 if none
   std::vector<int> list_length;  // number of PEs in the ray's traversal list
 };

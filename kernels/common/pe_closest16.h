@@ -260,11 +260,17 @@ inline __attribute__((always_inline)) int gr_store_packet_hits(const GrHits16* b
   vstore16(best_u, 0, results + GR_RESULT_U * lanes_total + out);
   vstore16(best_v, 0, results + GR_RESULT_V * lanes_total + out);
   if (interrupt) {
+    /* A plain load and store, not atomic_min: a key only ever holds the t of a real
+     * in-voxel hit of its ray, so whichever store survives a race, a PE it skips starts
+     * beyond a hit and cannot hold the closest one; a lost smaller key only skips less.
+     * The locked compare-and-swap loop PoCL makes of atomic_min was 8.7 % of the camera
+     * kernel's samples (perf, bunny 1280x960). */
     int keys[16], index[16];
     vstore16(as_int16(best_t), 0, keys);
     vstore16(key_of, 0, index);
     for (int k = 0; k < 16; ++k)
-      if (hit & (1 << k)) atomic_min(&first_hit_key[index[k]], keys[k]);
+      if ((hit & (1 << k)) && keys[k] < first_hit_key[index[k]])
+        first_hit_key[index[k]] = keys[k];
   }
   return hit;
 }

@@ -94,6 +94,23 @@ TEST(AovFile, HoldsTheImageAndEveryAovButTheDiagnosticsAsTheirOwnFilesDo) {
   }
 }
 
+// The tests AOV depends on the rays and the structure alone (ray_tests.h), not on which
+// pairs the camera interrupt skipped on the device's threads: two runs, the same bits.
+TEST(AovFile, TheTestsAovIsTheSameFromRunToRun) {
+  if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
+  const std::string dir = test::freshDir("aov_file_tests");
+  std::vector<std::vector<float>> runs;
+  for (const char* name : {"a", "b"}) {
+    const std::string file = dir + "/tests_" + name + ".exr";
+    expectSuccess(test::gridrtCommand(test::modelScene("bunny_res4.glb"), 320, 240,
+                                      {"-o", dir + "/image.png", "--force", "--primary-only", "--aov",
+                                       "tests=" + file}));
+    runs.push_back(plane(readImage(file), 0));
+  }
+  EXPECT_EQ(runs[0], runs[1]);
+  EXPECT_GT(*std::max_element(runs[0].begin(), runs[0].end()), 0.0f);
+}
+
 TEST(AovFile, BareAovsChooseTheLayersAndAlphaJoinsTheImage) {
   if (!haveDevice()) GTEST_SKIP() << "no OpenCL device";
   const std::string dir = test::freshDir("aov_file_bare");

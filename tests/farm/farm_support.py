@@ -12,7 +12,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE = os.environ.get("GRIDRT_SOURCE_DIR", os.path.dirname(os.path.dirname(HERE)))
 GRIDRT = os.environ.get("GRIDRT_BINARY", os.path.join(SOURCE, "build", "gridrt"))
 MERGE_TILES = os.environ.get("GRIDRT_MERGE_TILES",
-                             os.path.join(os.path.dirname(GRIDRT), "tools", "merge_tiles"))
+                             os.path.join(os.path.dirname(GRIDRT), "tools", "gridrt-merge-tiles"))
 FARM = os.path.join(SOURCE, "tools", "gridrt-farm")
 STAND_IN = os.path.join(HERE, "anim_stand_in.py")
 BROKEN_HERE = os.path.join(HERE, "broken_here_gridrt.py")

@@ -23,8 +23,12 @@ namespace gridrt {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+// Of the tests past the rays' winners, the share an interrupt in PE order skips at least:
+// the PEs of one z layer come in index order, which a slanted ray may cross out of order
+// (it skipped 97.7 % on bunny_res4, 2026-12-07).
+constexpr double kInOrderSkipShare = 0.9;
 
-TEST(InterruptOrder, InPeOrderEveryPeAfterAHitSkipsTheRay) {
+TEST(InterruptOrder, InPeOrderThePesAfterAHitSkipTheRay) {
   const char* units = std::getenv("POCL_MAX_PTHREAD_COUNT");
   ASSERT_TRUE(units && std::strcmp(units, "1") == 0)
       << "run through ctest, which sets POCL_MAX_PTHREAD_COUNT=1";
@@ -53,13 +57,18 @@ TEST(InterruptOrder, InPeOrderEveryPeAfterAHitSkipsTheRay) {
   plain.intersect(up, HitMode::Closest, all_hits, &all);
   interrupt.intersect(up, HitMode::Closest, skipping_hits, &skipping);
   EXPECT_EQ(test::hitMismatches(all_hits, skipping_hits, "interrupt"), 0u);
-  size_t fewer = 0;
-  for (size_t r = 0; r < up.size(); ++r) {
-    EXPECT_LE(skipping.tests[r], all.tests[r]) << "ray " << r;
-    fewer += skipping.tests[r] < all.tests[r];
-  }
   EXPECT_GT(interrupt.counters().skipped_pairs, 0u) << "the interrupt skipped nothing";
-  EXPECT_GT(fewer, up.size() / 10);
+  // The `tests` AOV counts each ray's PEs up to its winner (ray_tests.h): what a perfect
+  // in-order interrupt leaves. It never skips less than nothing nor more than that; in
+  // PE order it skips nearly all of the rest.
+  EXPECT_EQ(skipping.tests, all.tests);
+  uint64_t to_winners = 0;
+  for (int tests : all.tests) to_winners += uint64_t(tests);
+  const uint64_t every = plain.counters().tests, left = interrupt.counters().tests;
+  EXPECT_GE(left, to_winners);
+  EXPECT_GE(double(every - left), kInOrderSkipShare * double(every - to_winners))
+      << every << " tests in all, " << left << " left by the interrupt, " << to_winners
+      << " up to the winners";
 }
 
 }  // namespace

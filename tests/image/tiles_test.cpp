@@ -1,6 +1,6 @@
 // Tiled rendering: tiles rendered with `gridrt --crop ... --crop-output window` and pasted
-// by tools/merge_tiles equal one full render bit for bit, and each tile file carries its
-// offset in its data window. Runs gridrt and merge_tiles as subprocesses.
+// by gridrt-merge-tiles equal one full render bit for bit, and each tile file carries its
+// offset in its data window. Runs gridrt and gridrt-merge-tiles as subprocesses.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -23,9 +23,10 @@ using gridrt::test::joinArgs;
 using gridrt::test::runCommand;
 using gridrt::test::tempPath;
 
-// tools/merge_tiles is built next to gridrt, in the tools/ folder of the build.
+// gridrt-merge-tiles is built next to gridrt, in the tools/ folder of the build.
 std::string mergeTilesBinary() {
-  return (std::filesystem::path(gridrtBinary()).parent_path() / "tools" / "merge_tiles").string();
+  const std::filesystem::path tools = std::filesystem::path(gridrtBinary()).parent_path() / "tools";
+  return (tools / "gridrt-merge-tiles").string();
 }
 
 void expectSuccess(const std::vector<std::string>& argv) {
@@ -64,7 +65,7 @@ void expectDataWindow(const OIIO::ImageSpec& s, int x, int y, int width, int hei
 void expectTilesMergeToFullRender(const std::string& name, const std::vector<Rect>& tiles,
                                   const std::vector<std::string>& flags) {
   if (!std::filesystem::exists(mergeTilesBinary()))
-    GTEST_SKIP() << "merge_tiles is not built at " << mergeTilesBinary();
+    GTEST_SKIP() << "gridrt-merge-tiles is not built at " << mergeTilesBinary();
   const std::string full = tempPath(name + "_full.exr"), merged = tempPath(name + "_merged.exr");
   render(full, flags);
   std::vector<std::string> merge{mergeTilesBinary(), merged};
@@ -183,7 +184,7 @@ std::string fileBytes(const std::string& path) {
 // would round differently if each were encoded on its own with another encoder).
 TEST(Tiles, MergedPngIsTheFullRendersPngByteForByte) {
   if (!std::filesystem::exists(mergeTilesBinary()))
-    GTEST_SKIP() << "merge_tiles is not built at " << mergeTilesBinary();
+    GTEST_SKIP() << "gridrt-merge-tiles is not built at " << mergeTilesBinary();
   const std::vector<Rect> tiles{{0, 0, 23, 17}, {23, 0, 64, 17}, {0, 17, 23, 48}, {23, 17, 64, 48}};
   const std::string full = tempPath("png_full.png"), merged = tempPath("png_merged.png");
   render(full, {"--spp", "3"});
@@ -205,7 +206,7 @@ TEST(Tiles, MergedPngIsTheFullRendersPngByteForByte) {
 // background around it and partly covered edge pixels).
 TEST(Tiles, MergedPngWithAlphaIsTheFullRendersPngByteForByte) {
   if (!std::filesystem::exists(mergeTilesBinary()))
-    GTEST_SKIP() << "merge_tiles is not built at " << mergeTilesBinary();
+    GTEST_SKIP() << "gridrt-merge-tiles is not built at " << mergeTilesBinary();
   const std::vector<Rect> tiles{{0, 0, 23, 17}, {23, 0, 64, 17}, {0, 17, 23, 48}, {23, 17, 64, 48}};
   const std::vector<std::string> flags{gridrt::test::modelScene("bunny_res4.glb"),
                                        "--spp",
@@ -234,7 +235,7 @@ TEST(Tiles, MergedPngWithAlphaIsTheFullRendersPngByteForByte) {
 // A one-channel AOV has no colours to encode: an 8-bit OUT is refused, nothing written.
 TEST(Tiles, EightBitOutputOfNonRgbTilesIsRefused) {
   if (!std::filesystem::exists(mergeTilesBinary()))
-    GTEST_SKIP() << "merge_tiles is not built at " << mergeTilesBinary();
+    GTEST_SKIP() << "gridrt-merge-tiles is not built at " << mergeTilesBinary();
   const std::string tile = tempPath("aov_tile_image.exr"), depth = tempPath("aov_tile_depth.exr");
   render(tile, {"--crop", "0,0,64,48", "--crop-output", "window", "--aov", "depth=" + depth});
   const std::string merged = tempPath("aov_merged.png");
@@ -246,7 +247,7 @@ TEST(Tiles, EightBitOutputOfNonRgbTilesIsRefused) {
 
 TEST(Tiles, OverlappingTilesAreRefused) {
   if (!std::filesystem::exists(mergeTilesBinary()))
-    GTEST_SKIP() << "merge_tiles is not built at " << mergeTilesBinary();
+    GTEST_SKIP() << "gridrt-merge-tiles is not built at " << mergeTilesBinary();
   const std::string a = tempPath("overlap_a.exr"), b = tempPath("overlap_b.exr");
   render(a, {"--crop", "0,0,32,24", "--crop-output", "window"});
   render(b, {"--crop", "16,0,48,24", "--crop-output", "window"});

@@ -67,8 +67,8 @@ def parser():
                    help="frames A:B of an animation (gridrt --frames); OUT a printf pattern")
     p.add_argument("--gridrt", metavar="PATH", help="the gridrt the workers run (default: the build's "
                    "build/gridrt beside this tool)")
-    p.add_argument("--merge-tiles", metavar="PATH", help="the merge_tiles that merges the "
-                   "frames here (default: tools/merge_tiles of gridrt's build)")
+    p.add_argument("--merge-tiles", metavar="PATH", help="the gridrt-merge-tiles that merges the "
+                   "frames here (default: tools/gridrt-merge-tiles of gridrt's build)")
     p.add_argument("--shared-scene", action="store_true",
                    help="the workers read SCENE from its path (a shared file system) "
                    "instead of receiving it with the tasks")

@@ -18,10 +18,10 @@ BUILT_GRIDRT = os.path.join(ROOT, "build", "gridrt")
 
 
 def merge_tiles_beside(gridrt):
-    """tools/merge_tiles of the build the gridrt comes from, else of this tree's build."""
-    beside = os.path.join(os.path.dirname(gridrt), "tools", "merge_tiles")
+    """tools/gridrt-merge-tiles of the build the gridrt comes from, else of this tree's build."""
+    beside = os.path.join(os.path.dirname(gridrt), "tools", "gridrt-merge-tiles")
     return beside if os.path.isfile(beside) else os.path.join(ROOT, "build", "tools",
-                                                              "merge_tiles")
+                                                              "gridrt-merge-tiles")
 
 
 def image_size(cmd, document):
@@ -56,7 +56,7 @@ def run(argv):
         raise UsageError(f"--gridrt: '{gridrt}' is not an executable (build it, or name one)")
     merge_tiles = cmd.merge_tiles or merge_tiles_beside(gridrt)
     if not os.access(merge_tiles, os.X_OK):
-        raise UsageError(f"merge_tiles is not built at '{merge_tiles}'")
+        raise UsageError(f"gridrt-merge-tiles is not built at '{merge_tiles}'")
     scene, shown, document = prepare_scene(cmd)
     size = image_size(cmd, document)
     try:

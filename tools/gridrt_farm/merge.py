@@ -1,4 +1,4 @@
-"""A frame's tiles merged into its output by tools/merge_tiles: EXR/TIFF as exact floats,
+"""A frame's tiles merged into its output by gridrt-merge-tiles: EXR/TIFF as exact floats,
 PNG/JPEG encoded once, after the merge, by gridrt's own image writer, so the file is what
 one gridrt process writes. The tiles wait in a hidden folder beside the output, removed
 once the frame is written or the job fails."""
@@ -9,7 +9,7 @@ import tempfile
 
 
 class MergeError(Exception):
-    """merge_tiles failed: its one-line message, exit 1."""
+    """gridrt-merge-tiles failed: its one-line message, exit 1."""
 
 
 class FrameTiles:
@@ -38,7 +38,7 @@ class FrameTiles:
         self.discard()
         if proc.returncode != 0:
             lines = [l for l in proc.stderr.splitlines() if l.strip()]
-            raise MergeError(lines[-1] if lines else f"merge_tiles exited {proc.returncode}")
+            raise MergeError(lines[-1] if lines else f"gridrt-merge-tiles exited {proc.returncode}")
 
     def discard(self):
         if self.folder is not None:
