@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "module_search.h"
+
 namespace gridrt {
 namespace {
 
@@ -16,11 +18,9 @@ OpenWindowEntry loadEntry() {
 #ifndef GRIDRT_WINDOW_MODULE_FILE
   throw NoDisplay("gridrt was built without the window module (install libsdl2-dev, rebuild)");
 #else
-  std::vector<std::string> candidates;
+  const std::vector<std::string> candidates = moduleSearchPaths(
+      GRIDRT_WINDOW_MODULE_FILE, GRIDRT_MODULE_DIR_FROM_BIN, GRIDRT_WINDOW_MODULE_PATH);
   std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) candidates.push_back((exe.parent_path() / GRIDRT_WINDOW_MODULE_FILE).string());
-  candidates.push_back(GRIDRT_WINDOW_MODULE_PATH);
   std::string why;
   for (const std::string& path : candidates) {
     if (!fs::exists(path, ec)) continue;
@@ -34,7 +34,9 @@ OpenWindowEntry loadEntry() {
       return entry;
     why = path + ": no " GRIDRT_WINDOW_ENTRY;
   }
-  if (why.empty()) why = "not found beside the executable nor at " GRIDRT_WINDOW_MODULE_PATH;
+  if (why.empty())
+    why = "not found beside the executable, in its " GRIDRT_MODULE_DIR_FROM_BIN
+          " nor at " GRIDRT_WINDOW_MODULE_PATH;
   throw NoDisplay("cannot load the window module " GRIDRT_WINDOW_MODULE_FILE ": " + why);
 #endif
 }

@@ -1,6 +1,6 @@
 // The window module (viewer_window.h), loaded with dlopen only when --view asks for a
-// window: beside the running executable first (a relocated gridrt carries it along), then
-// where the build put it.
+// window, where module_search.h looks: beside the running executable, in the installed
+// modules' folder, then where the build put it.
 #pragma once
 #include <memory>
 #include <stdexcept>
