@@ -3,6 +3,7 @@
 // milliseconds), presses keys or drags, and checks what the viewer wrote and printed and
 // what the window shows against the command line's own renders.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +32,8 @@ constexpr double kOutputWaitS = 30.0;
 // recomputed in float: a few float ulps of the coordinates, far below the 5 degrees of a key.
 constexpr double kAngleToleranceDegrees = 1e-3;
 constexpr int kWidth = 160, kHeight = 120;
+// How long the window may take to show a frame again after the title announced it.
+constexpr double kRedrawWaitS = 2.0;
 
 std::unique_ptr<VirtualDisplay> display;
 std::string skip_reason;
@@ -96,6 +99,18 @@ class ViewerWindow : public ::testing::Test {
     return screenshot(display->name(), window_);
   }
 
+  // The same, retried until it shows `want` or kRedrawWaitS pass (a resized window may be
+  // drawn again by the server's exposure after the frame): the last screenshot.
+  Screenshot windowShowing(ViewerProcess& viewer, const std::string& title_part,
+                           const std::vector<unsigned char>& want) {
+    Screenshot shot = windowPixels(viewer, title_part);
+    for (int k = 0; shot.rgb != want && k < int(kRedrawWaitS / 0.05); ++k) {
+      usleep(50000);
+      shot = screenshot(display->name(), window_);
+    }
+    return shot;
+  }
+
   std::string dir_, window_;
 };
 
@@ -140,8 +155,8 @@ TEST_F(ViewerWindow, SnapshotIsTheCommandLinesImageBitForBitAndSoIsTheWindow) {
   ASSERT_TRUE(fileExists(written));
   const std::string rendered = renderPrinted(lines[0], "cli.png");
   EXPECT_TRUE(sameFileBytes(written, rendered)) << lines[0];
-  const Screenshot shown = windowPixels(*viewer, "wrote gridrt_view_0000.png");
   const Screenshot cli = imageCodes(rendered);
+  const Screenshot shown = windowShowing(*viewer, "wrote gridrt_view_0000.png", cli.rgb);
   ASSERT_EQ(shown.width, kWidth);
   ASSERT_EQ(shown.height, kHeight);
   EXPECT_TRUE(shown.rgb == cli.rgb) << "the window differs from " << rendered;
@@ -224,10 +239,11 @@ TEST_F(ViewerWindow, ResizingTheWindowChangesTheImageSize) {
   EXPECT_NE(lines[0].find("--width 200 --height 90"), std::string::npos) << lines[0];
   const std::string rendered = renderPrinted(lines[0], "cli.png");
   EXPECT_TRUE(sameFileBytes(dir_ + "/gridrt_view_0000.png", rendered));
-  const Screenshot shown = windowPixels(*viewer, "wrote gridrt_view_0000.png");
+  const Screenshot cli = imageCodes(rendered);
+  const Screenshot shown = windowShowing(*viewer, "wrote gridrt_view_0000.png", cli.rgb);
   ASSERT_EQ(shown.width, 200);
   ASSERT_EQ(shown.height, 90);
-  EXPECT_TRUE(shown.rgb == imageCodes(rendered).rgb);
+  EXPECT_TRUE(shown.rgb == cli.rgb);
   viewer->keys({"q"});
   EXPECT_EQ(viewer->waitForExit(kOutputWaitS), 0) << viewer->errorOutput();
 }
