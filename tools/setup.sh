@@ -31,6 +31,8 @@ PACKAGES=(
   pybind11-dev python3-dev python3-numpy python3-openimageio
   help2man dpkg-dev file zsh
   openssl iproute2  # the farm's certificates and its tests between network namespaces
+  libsdl2-dev                # the window of gridrt --view (a module only --view loads)
+  xvfb xdotool x11-apps      # the viewer's tests: a virtual display, its input, xwd
 )
 if [ "$bench" -eq 1 ]; then PACKAGES+=(libembree-dev); fi
 

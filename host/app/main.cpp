@@ -8,12 +8,14 @@
 #include "application.h"
 #include "cl_runtime.h"
 #include "errors.h"
+#include "interactive_viewer.h"
 #include "options.h"
 
 int main(int argc, char** argv) {
   try {
     auto options = gridrt::parseCommandLine(argc, argv);
     if (!options) return 0;
+    if (options->view) return gridrt::runViewer(*options);
     return gridrt::runApplication(*options);
   } catch (const gridrt::UsageError& e) {
     std::cerr << "gridrt: " << e.what() << '\n';

@@ -174,6 +174,20 @@ void checkCombinations(Options& o, const RawOptions& raw) {
                        "dda) have PEs and traversal lists");
 }
 
+// --view shows one picture in a window and writes SCENE_view_NNNN.png on P: the options
+// for files, sequences and timing runs have no place beside it.
+void checkViewCombinations(const Options& o, const RawOptions& raw) {
+  if (!o.view) return;
+  for (const char* flag : {"--output", "--format", "--force", "--frames", "--fps", "--crop",
+                           "--aov", "--aov-file", "--repeat", "--stats", "--stats-json",
+                           "--list-devices"})
+    if (raw.given.count(flag))
+      throw UsageError(std::string("--view: not with ") + (std::string(flag) == "--output" ? "-o" : flag) +
+                       " (P writes the view to SCENE_view_NNNN.png)");
+  if (o.scene == kStandardInput)
+    throw UsageError("--view: the scene must be a file (P prints a command that reads it again)");
+}
+
 // With --frames every image path is a frame pattern (without -o, SCENE_%04d.png); without
 // it a path is taken as written, '%' and all, which is said when it looks like a pattern.
 void checkFramePatterns(Options& o) {
@@ -286,6 +300,9 @@ void buildApp(CLI::App& app, Options& o, RawOptions& raw) {
       ->check(integerIn(0, 64));
   app.add_option("--device", o.device, "OpenCL device: P:D or part of its name (default: first)");
   app.add_flag("--list-devices", o.list_devices, "list OpenCL devices and exit");
+  app.add_flag("--view", o.view,
+               "open a window that renders the scene live (mouse and keys: docs/viewer.md; "
+               "P writes SCENE_view_NNNN.png)");
   app.add_option("--threads", o.threads, "threads for the host and a CPU device (0: all cores)")
       ->capture_default_str()
       ->check(integerIn(0, 4096));
@@ -470,6 +487,7 @@ void finish(Options& o, const RawOptions& raw) {
   finishCrop(o, raw);
   checkAlphaFormat(o);
   checkCombinations(o, raw);
+  checkViewCombinations(o, raw);
   checkFramePatterns(o);
   checkDistinctOutputs(o);
 }

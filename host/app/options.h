@@ -46,6 +46,8 @@ struct Options {
   // rows; the image is the same bit for bit whatever the size (renderer.h).
   int wave_rays = int(kMaxPassRays);
   bool list_devices = false;
+  // --view: an interactive window instead of an image file (host/viewer, docs/viewer.md).
+  bool view = false;
   AccelKind accel = AccelKind::GridRt;
   GridSettings grid;                            // --grid auto | NX,NY,NZ; --grid-density
   bool pe_interrupt = false;                    // emulate the paper's interrupt on the device

@@ -117,13 +117,15 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     a.list_length.assign(diag ? pixels : 0, 0.0f);
   }
 
-  if (!settings_.adaptive_aa) {
+  if (settings_.single_sample >= 0) {
+    renderInBands(frame, win, 1, settings_.single_sample, 1.0f, progress);
+  } else if (!settings_.adaptive_aa) {
     const int spp = std::max(1, settings_.spp);
-    renderInBands(frame, win, spp, 1.0f / float(spp), progress);
+    renderInBands(frame, win, spp, spp == 1 ? -1 : 0, 1.0f / float(spp), progress);
   } else {
     // Adaptive supersampling: the pixel centres first; then extra jittered samples only
     // where a pixel differs from a 4-neighbour by more than the threshold.
-    renderInBands(frame, win, 1, 1.0f, progress);
+    renderInBands(frame, win, 1, -1, 1.0f, progress);
     // Only the output window's pixels are refined; the ring around it (film_window_) holds
     // the centres of their neighbours outside it.
     auto differs = [&](int p, int q) {
@@ -197,8 +199,8 @@ std::function<void(int, int)> Renderer::passProgress(const std::function<void(in
   };
 }
 
-void Renderer::renderInBands(Frame& frame, const PixelWindow& window, int spp, float weight,
-                             const std::function<void(int, int)>& progress) {
+void Renderer::renderInBands(Frame& frame, const PixelWindow& window, int spp, int first_sample,
+                             float weight, const std::function<void(int, int)>& progress) {
   const size_t budget = std::min(settings_.max_pass_rays, kMaxBatchRays);
   const size_t row_rays = size_t(window.width()) * size_t(spp);
   // As few bands as fit the budget, of about equal height (so their buffers fit each other).
@@ -218,7 +220,7 @@ void Renderer::renderInBands(Frame& frame, const PixelWindow& window, int spp, f
       window_pixels_band_ = part;
       window_pixels_width_ = settings_.width;
     }
-    renderPass(frame, spp, 0, weight, &part, passProgress(progress, band, bands));
+    renderPass(frame, spp, first_sample, weight, &part, passProgress(progress, band, bands));
   }
 }
 
@@ -233,7 +235,7 @@ void Renderer::renderPass(Frame& frame, int spp, int first_sample, float weight,
   // Their own buffers keep their size from frame to frame (no refill with zeros).
   resizeFaultedIn(primary_rays_, rendered * spp);
   const CameraRayGenerator camera_rays(camera_, w, h);
-  const bool centre_only = spp == 1 && first_sample == 0;
+  const bool centre_only = first_sample < 0;
   // A pinhole camera's pixel centres over a window go through tracePrimary (below), whose
   // intersector makes them (Intersector::generateAndIntersectPrimary).
   const bool traced_primary = window && centre_only && !camera_.orthographic;

@@ -57,6 +57,10 @@ struct RenderSettings {
   // Adaptive depth: a reflection/refraction ray whose throughput (max channel) is below
   // this is not traced; 0 traces every ray up to max_depth.
   float min_path_weight = 0.0f;
+  // >= 0: the frame holds only sample `single_sample` of a frame of spp jittered samples,
+  // with weight 1 (the viewer's progressive refinement adds such frames up); -1: all spp
+  // samples, each of weight 1/spp. Uniform sampling only (not with adaptive_aa).
+  int single_sample = -1;
   // Primary rays per pass (kMaxPassRays unless a test wants small passes).
   size_t max_pass_rays = kMaxPassRays;
   // Hits on plain surfaces shaded 16 at a time (plain_shading.h); off, every hit takes the
@@ -113,6 +117,8 @@ class Renderer {
            RenderSettings settings);
   // Renders one frame. progress(done, total) is called between wavefront stages.
   void render(Frame& frame, const std::function<void(int, int)>& progress = {});
+  // Which sample the next frames hold (RenderSettings::single_sample; -1: all of them).
+  void setSingleSample(int sample) { settings_.single_sample = sample; }
 
  private:
   enum class RayKind : uint8_t { Primary, Reflection, Refraction };
@@ -136,7 +142,8 @@ class Renderer {
                       RayDiagnostics* diagnostics, double& ms, const BatchTrace& trace);
   void traceBatched(const std::vector<GrRay>& rays, HitMode mode, std::vector<GrHit>& hits,
                     RayDiagnostics* diagnostics, double& ms);
-  // Traces `spp` primary samples (jitter indices first_sample...) of window_pixels_, each
+  // Traces `spp` primary samples (jitter indices first_sample...; first_sample -1: one
+  // sample, the pixel centre) of window_pixels_, each
   // path starting with throughput `weight`, through all bounces into radiance_. `window`
   // (the pixels as a rectangle) marks a pass of whole rows; with sample 0 it writes the
   // AOVs of its pixels.
@@ -144,8 +151,9 @@ class Renderer {
                   const std::function<void(int, int)>& progress);
   // renderPass over `window` in bands of whole rows of at most max_pass_rays primary rays
   // (at least one row each), window_pixels_ set to each band's pixels.
-  void renderInBands(Frame& frame, const PixelWindow& window, int spp, float weight,
-                     const std::function<void(int, int)>& progress);
+  // first_sample: the jitter index of each pixel's first sample (-1: spp == 1 at the centre).
+  void renderInBands(Frame& frame, const PixelWindow& window, int spp, int first_sample,
+                     float weight, const std::function<void(int, int)>& progress);
   // Pass `pass` of `passes`' stages on one progress scale: the passes one after the other.
   static std::function<void(int, int)> passProgress(const std::function<void(int, int)>& progress,
                                                     int pass, int passes);
