@@ -11,6 +11,7 @@ import help_options
 from installed_tree import BUILT_GRIDRT, SIZE, InstalledTree, run, same_image, without_loader_log
 
 MODULE = "gridrt_image_codec.so"
+WINDOW_MODULE = "gridrt_window.so"  # the viewer's (host/viewer/sdl)
 
 
 class Install(unittest.TestCase):
@@ -51,6 +52,18 @@ class Install(unittest.TestCase):
         r = self.tree.run(["gridrt-merge-tiles", merged, *tiles])
         self.assertEqual(r.returncode, 0, r.stderr)
         same_image(self, merged, full)
+
+    def test_the_viewer_loads_its_window_module_from_the_installed_tree(self):
+        built = os.path.join(os.path.dirname(BUILT_GRIDRT), WINDOW_MODULE)
+        if not os.path.isfile(built):
+            self.skipTest("gridrt was built without SDL2 (libsdl2-dev): no window module")
+        # A display that cannot open: the module loads, then says so in one line.
+        r = self.tree.run(["gridrt", "--view"], env=dict(self.tree.env, DISPLAY=":65000",
+                                                         LD_DEBUG="files"))
+        self.assertEqual(r.returncode, 1, without_loader_log(r.stderr))
+        loaded = re.findall(r"file=(\S*" + re.escape(WINDOW_MODULE) + r")", r.stderr)
+        self.assertEqual(set(loaded), {self.tree.path("lib", "gridrt", WINDOW_MODULE)})
+        self.assertIn("gridrt: no display:", without_loader_log(r.stderr))
 
     def test_the_farm_runs_from_the_installed_tree(self):
         if run(["/usr/bin/python3", "-c", "import distributed"]).returncode != 0:
