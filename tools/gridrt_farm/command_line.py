@@ -31,8 +31,9 @@ REFUSED = {
     "--force": "-o is required, and replaces an existing file as gridrt's -o does",
     "--format": "the output's format is -o's extension",
     "--version": "ask gridrt",
+    "--view": "the viewer's window is gridrt's own (gridrt --view)",
 }
-REFUSED_FLAGS = {"--force", "--list-devices", "--version"}
+REFUSED_FLAGS = {"--force", "--list-devices", "--version", "--view"}
 OUTPUT_EXTENSIONS = (".png", ".jpg", ".jpeg", ".exr", ".tif", ".tiff")
 # A printf conversion of the frame number in a sequence's -o: %d or %04d.
 FRAME_CONVERSION = re.compile(r"%0?\d*d")
