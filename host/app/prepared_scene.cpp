@@ -58,13 +58,17 @@ RenderSettings renderSettings(const Options& o) {
 }
 
 PreparedScene::PreparedScene(const Options& o, ClRuntime& runtime, const Scene& scene,
-                             const Camera& camera) {
+                             const Camera& camera)
+    : PreparedScene(o, runtime, scene, primaryRayOrigins(camera, o.width, o.height)) {}
+
+PreparedScene::PreparedScene(const Options& o, ClRuntime& runtime, const Scene& scene,
+                             const Bounds& ray_origins) {
   triangles_ = prepareTriangles(scene, KernelOptions{o.watertight});
   Stopwatch clock;
   uses_grid_ = o.accel == AccelKind::GridRt || o.accel == AccelKind::Dda;
   if (uses_grid_) {
     GridSettings settings = o.grid;
-    settings.ray_origins = primaryRayOrigins(camera, o.width, o.height);
+    settings.ray_origins = ray_origins;
     if (o.accel == AccelKind::Dda) settings.structure = GridStructure::Uniform;  // it walks voxels
     grid_ = buildGrid(triangles_, sceneBounds(scene), settings);
   }

@@ -26,6 +26,11 @@ class PreparedScene {
   // Builds the grid and the intersector (the runtime keeps the programs it built, so only
   // its first PreparedScene compiles or loads them). OpenCL errors become RenderErrors.
   PreparedScene(const Options& o, ClRuntime& runtime, const Scene& scene, const Camera& camera);
+  // The same for rays that start anywhere in `ray_origins` (GridSettings::ray_origins): the
+  // viewer builds one for a box its camera moves in. Any such box gives the same hits: the
+  // grid's margin only grows with it.
+  PreparedScene(const Options& o, ClRuntime& runtime, const Scene& scene,
+                const Bounds& ray_origins);
   // The intersector holds the grid and triangles by reference: the object stays put.
   PreparedScene(const PreparedScene&) = delete;
   PreparedScene& operator=(const PreparedScene&) = delete;

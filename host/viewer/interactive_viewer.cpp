@@ -39,9 +39,16 @@ constexpr int kMaxViewDepth = 64;
 // is off the exact time by an ulp or so): the steps go to the frames of --frames.
 constexpr double kFrameSnap = 1e-6;
 
-// What an input changed, from the least to the most work it makes.
-// Pose: the animation's time (the scene posed again); Scene: loaded again (another camera).
-enum class Change { None, Picture, Renderer, Prepared, Pose, Scene };
+// The prepared scene (grid and intersector) serves every eye within this many scene
+// diagonals of the scene's box; an eye further out builds it again. A farther box only
+// grows the grid's margin (the hits stay the same), so orbit, pan and zoom keep it.
+constexpr float kEyeReachShare = 1.0f;
+
+// What an input changed, from the least to the most work it makes. Camera: a new eye or
+// target, which keeps the prepared scene while the eye stays in the box it was built for
+// (InteractiveViewer::moveCamera); Pose: the animation's time (the scene posed again);
+// Scene: loaded again (another camera).
+enum class Change { None, Picture, Renderer, Camera, Prepared, Pose, Scene };
 
 Change atLeast(Change a, Change b) { return std::max(a, b); }
 
@@ -55,6 +62,7 @@ class InteractiveViewer {
  private:
   void loadSceneForView();
   void prepare();
+  void moveCamera();
   void makeRenderer();
   // Does the work `change` calls for (the scene posed again, the grid and intersector
   // built, the renderer made), then change is None.
@@ -85,6 +93,8 @@ class InteractiveViewer {
   Bounds framing_;
   Camera camera_;
   std::unique_ptr<PreparedScene> prepared_;
+  Bounds prepared_reach_;  // where the eye may go with prepared_ kept (kEyeReachShare)
+  bool prepared_for_camera_ = false;  // prepared_'s grid is the camera's own (the command line's)
   std::unique_ptr<Renderer> renderer_;
   std::unique_ptr<ViewerWindow> window_;
   Frame frame_;
@@ -113,7 +123,31 @@ void InteractiveViewer::prepare() {
   camera_ = chooseCamera(o_, scene_, framing_);
   renderer_.reset();
   prepared_.reset();
-  prepared_ = std::make_unique<PreparedScene>(o_, *runtime_, scene_, camera_);
+  // Built for rays from anywhere near the scene, so that moving the eye keeps it; for the
+  // views of the structure (PE, tests, list length) the grid the command line would build
+  // for this camera, whose margin, hence cells, depend on the eye.
+  prepared_reach_ = primaryRayOrigins(camera_, o_.width, o_.height);
+  prepared_for_camera_ = needsDiagnostics(view_);
+  const Bounds box = sceneBounds(scene_);
+  if (!box.empty() && !prepared_for_camera_) {
+    const glm::vec3 reach = kEyeReachShare * glm::vec3(glm::length(box.extent()));
+    prepared_reach_.grow(box.lo - reach);
+    prepared_reach_.grow(box.hi + reach);
+  }
+  prepared_ = std::make_unique<PreparedScene>(o_, *runtime_, scene_, prepared_reach_);
+  makeRenderer();
+}
+
+void InteractiveViewer::moveCamera() {
+  camera_ = chooseCamera(o_, scene_, framing_);
+  const Bounds origins = primaryRayOrigins(camera_, o_.width, o_.height);
+  const bool inside = !origins.empty() && glm::all(glm::greaterThanEqual(origins.lo, prepared_reach_.lo)) &&
+                      glm::all(glm::lessThanEqual(origins.hi, prepared_reach_.hi));
+  if (!prepared_ || !inside || prepared_for_camera_) {
+    prepare();
+    return;
+  }
+  renderer_.reset();
   makeRenderer();
 }
 
@@ -167,7 +201,7 @@ Change InteractiveViewer::moveTo(const LookAt& view) {
     return Change::None;  // a move that would put the eye on the target is not taken
   o_.eye = view.eye;
   o_.target = view.target;
-  return Change::Prepared;
+  return Change::Camera;
 }
 
 Change InteractiveViewer::setTime(double t) {
@@ -365,8 +399,13 @@ void InteractiveViewer::update(Change& change) {
     status_.triangles = scene_.triangleCount();
     status_.pes = prepared_->grid() ? prepared_->grid()->peCount() : 0;
     status_.accel = prepared_->intersector().name();
+  } else if (change == Change::Camera) {
+    moveCamera();
   } else if (change == Change::Renderer) {
-    makeRenderer();
+    if (needsDiagnostics(view_) && !prepared_for_camera_)
+      prepare();  // a view of the structure: the camera's own grid
+    else
+      makeRenderer();
   }
   if (change >= Change::Renderer) {
     film_.restart();
