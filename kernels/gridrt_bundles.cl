@@ -13,10 +13,20 @@
  *
  * INTERRUPT emulates the paper's interrupt chain as gridrt_lists.cl does: a lane is skipped
  * when first_hit_key (per bundle ray, the int bits of the smallest t of a hit) is below its
- * own t_enter. */
+ * own t_enter.
+ *
+ * GR_PACKET_PROBE (0 unless the build options set it; tools/packet_cost.sh) cuts every
+ * packet short to measure its fixed cost by parts: 1 the dispatch and task read only, 2 the
+ * ray loads and the masks' store, 3 + the slab test and the interrupt keys, 4 + the
+ * packet's culling box and segment; the triangle tests and hit stores are what the full
+ * kernel adds. A probe's images are wrong by design. */
 #pragma OPENCL FP_CONTRACT OFF
 #include "gridrt_types.h"
 #include "pe_closest16.h"
+
+#ifndef GR_PACKET_PROBE
+#define GR_PACKET_PROBE 0
+#endif
 
 #if GR_PACKET_LANES != 16
 #error "the float16 lanes of this kernel are GR_PACKET_LANES"
@@ -57,6 +67,12 @@ inline __attribute__((always_inline)) void gr_bundle_packet(const GrRays16* r, f
   gr_slab16(r->oy, r->dy, 1.0f / r->dy, box->loy, box->hiy, &t_enter, &t_exit);
   gr_slab16(r->oz, r->dz, 1.0f / r->dz, box->loz, box->hiz, &t_enter, &t_exit);
   int16 pierced = in_task & (t_enter <= t_exit);
+#if GR_PACKET_PROBE == 2
+  /* The loads and the masks' store only (the slab test's result goes unused). */
+  GrPacketMasks loaded = {gr_lane_bits16(in_task), 0, 0, 0};
+  masks[out / GR_PACKET_LANES] = loaded;
+  return;
+#endif
   int16 active = pierced;
   int16 skipped = (int16)0;
   if (interrupt) {
@@ -87,10 +103,17 @@ inline __attribute__((always_inline)) void gr_bundle_packet(const GrRays16* r, f
     GrSegmentPacket seg;
     seg.enabled = 0;
     if (seg_cull) seg = gr_segment_packet16(r, fmax(t_enter, tmin), fmin(t_exit, tmax), active);
+#if GR_PACKET_PROBE == 3 || GR_PACKET_PROBE == 4
+    /* Stage 3 stops after the slab test and the interrupt keys; stage 4 after the packet's
+     * culling box and segment, kept alive through the tests count. */
+    if (GR_PACKET_PROBE == 4)
+      m.tests = (int)(packet_box.s0 + packet_box.s1 + packet_box.s2 + packet_box.s3) + seg.enabled;
+#else
     GrHits16 best;
     gr_pe_closest16(r, pe, tmin, tmax, t_enter, t_exit, active, o->any_hit, packet_box,
                     cull.enabled != 0.0f, &seg, &best, &m.tests);
     m.hit = gr_store_packet_hits(&best, o, out, (int16)first + GR_LANE_INDEX16);
+#endif
   }
   m.pierced = gr_lane_bits16(pierced);
   m.skipped = gr_lane_bits16(skipped);
@@ -106,6 +129,11 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
     int seg_stride, __global const GrCullFrame* set_frames, __global const float* set_planes,
     int set_stride, int sets_enabled) {
   const GrBundleTask task = tasks[get_group_id(0)];
+#if GR_PACKET_PROBE == 1
+  /* Dispatch only: the task read (kept alive by a store that never happens). */
+  if (task.ray_count < 0) results[0] = 1.0f;
+  return;
+#endif
   /* The PE's box (UniformGrid::pe_box): a uniform grid's voxel as the 3D-DDA's planes
    * (min + k * cell, computed on the host in float) or an adaptive leaf, whose faces are
    * the planes of the grids above it; neighbours share their faces' floats. */

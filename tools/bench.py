@@ -15,6 +15,7 @@ their own columns (load_ms, compile_ms, build_ms).
     .venv/bin/python tools/bench.py adaptive  # uneven scenes: uniform grid, adaptive, Embree, in turns
     .venv/bin/python tools/bench.py dynamic   # moving scenes: rebuild + render per frame, gridrt and Embree
     .venv/bin/python tools/bench.py farm      # tools/gridrt-farm: task cost, workers, the model
+    .venv/bin/python tools/bench.py packets   # a PE packet's device cost by part (kernel probe stages)
     .venv/bin/python tools/bench.py all
 """
 import argparse
@@ -28,6 +29,7 @@ import sys
 import tempfile
 
 from bench_farm import bench_farm, chart_farm
+from bench_packets import bench_packets, chart_packets
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODELS = os.path.join(ROOT, "scenes", "models")
@@ -1088,7 +1090,7 @@ SETS = {"paper": (bench_paper, chart_paper), "scaling": (bench_scaling, chart_sc
         "whitted": (bench_whitted, chart_whitted), "targets": (bench_targets, chart_targets),
         "single": (bench_single, chart_single), "adaptive": (bench_adaptive, chart_adaptive),
         "dynamic": (bench_dynamic, chart_dynamic), "waves": (bench_waves, chart_waves),
-        "farm": (bench_farm, chart_farm)}
+        "farm": (bench_farm, chart_farm), "packets": (bench_packets, chart_packets)}
 
 
 def main():
@@ -1097,7 +1099,7 @@ def main():
     p.add_argument("--frames", type=int, default=7, help="timed frames per figure (median), >= 5")
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
     p.add_argument("--rounds", type=int, default=TARGET_RUNS,
-                   help=f"targets, adaptive, dynamic, farm, waves: rounds of every variant in turns (default {TARGET_RUNS}), >= 3")
+                   help=f"targets, adaptive, dynamic, farm, waves, packets: rounds of every variant in turns (default {TARGET_RUNS}), >= 3")
     a = p.parse_args()
     if a.frames < 5:
         p.error("--frames must be at least 5")
@@ -1106,7 +1108,7 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     for name in (SETS if a.set == "all" else [a.set]):
         bench, chart = SETS[name]
-        rounds_sets = ("targets", "adaptive", "dynamic", "farm", "waves")
+        rounds_sets = ("targets", "adaptive", "dynamic", "farm", "waves", "packets")
         rows = bench(a.frames, a.rounds) if name in rounds_sets else bench(a.frames)
         write_csv(os.path.join(a.out, f"{name}.csv"), rows)
         chart(rows, os.path.join(a.out, f"{name}.png"))

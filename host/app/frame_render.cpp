@@ -100,6 +100,9 @@ FrameResult renderScene(const Options& o, ClRuntime& runtime, const Scene& scene
   const IntersectCounters& c = t.first_frame_counters;
   stats["tests_per_ray"] = c.rays ? double(c.tests) / double(c.rays) : 0.0;
   stats["tests_run_per_ray"] = c.rays ? double(c.tests_run) / double(c.rays) : 0.0;
+  // A frame's 16-lane PE packets and the kernels' device time over them: their fixed cost.
+  stats["kernel_packets"] = c.packets;
+  stats["kernel_ns_per_packet"] = c.packets ? median(t.device_ms) * 1e6 / double(c.packets) : 0.0;
   if (uses_grid) {
     std::vector<int> refs(grid->peCount());
     for (int pe = 0; pe < grid->peCount(); ++pe) refs[pe] = grid->triangleCountOfPe(pe);

@@ -332,13 +332,14 @@ void GridRtIntersector::intersect(const std::vector<GrRay>& rays, HitMode mode,
   clock.restart();
   runPes(n, mode);
   counters_.kernel_ms += clock.ms();
+  counters_.packets += bins_.packets;
 
   // Phase 2: per ray, the smallest (t, prim) over its PEs' in-voxel hits
   // (PacketResults::keepNearer), in two steps that read each result once whatever the
   // thread count: each slice takes the tasks whose packets start in its share of the
   // packets, counts their tests and sends each hit lane to the slice that owns its ray;
-  // then each slice reduces what was sent to its rays. keepNearer is a total order on (t, prim, PE), so the hits
-  // do not depend on the order the lanes arrive in.
+  // then each slice reduces what was sent to its rays. keepNearer is a total order on (t, prim,
+  // PE), so the hits do not depend on the order the lanes arrive in.
   clock.restart();
   if (diagnostics) {
     diagnostics->tests.assign(n, 0);
@@ -691,6 +692,7 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     const PacketResults results(results_map_, lanes, GR_BUNDLE_RESULT_PLANES);
     counters_.kernel_ms += clock.ms();
     counters_.device_ms += eventMs(pe_run);
+    counters_.packets += packets;
 
     // Phase 2: per ray, the smallest (t, prim) over its PEs' in-voxel hits
     // (PacketResults::keepNearer). Each thread owns a range of bundle order and reads the

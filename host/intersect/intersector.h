@@ -51,6 +51,7 @@ struct IntersectCounters {
   uint64_t tests_run = 0;      // ray-triangle tests run (gridrt: those left after culling)
   uint64_t list_entries = 0;   // (ray, PE) pairs (gridrt)
   uint64_t skipped_pairs = 0;  // pairs skipped by the emulated interrupt
+  uint64_t packets = 0;        // 16-lane packets the PE kernels ran (gridrt), padding included
   // The host's work before the kernels (gridrt), in three parts:
   double walk_ms = 0;          // the traversal lists' walk of the grid
   double binning_ms = 0;       // the (ray, PE) pairs binned by PE into the device's buffer

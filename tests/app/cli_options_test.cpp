@@ -136,6 +136,15 @@ TEST_F(CliOptions, StatisticsSplitTheHostListTimeByPassAndTimeTheKernelsOnTheDev
   EXPECT_GT(plain_.stats["kernel_device_ms"].get<double>(), 0.0);
   EXPECT_LE(plain_.stats["kernel_device_ms"].get<double>(),
             plain_.stats["kernel_ms"].get<double>());
+  // The device time over the frame's packets; a camera ray that hits (depth -1: a miss)
+  // holds a lane of one, 16 lanes a packet.
+  const double packets = plain_.stats["kernel_packets"].get<double>();
+  const size_t hit_pixels = size_t(std::count_if(
+      plain_.depth.pixels.begin(), plain_.depth.pixels.end(), [](float z) { return z >= 0.0f; }));
+  ASSERT_GT(hit_pixels, 0u);
+  EXPECT_GE(packets * 16, double(hit_pixels));
+  EXPECT_DOUBLE_EQ(plain_.stats["kernel_ns_per_packet"].get<double>(),
+                   plain_.stats["kernel_device_ms"].get<double>() * 1e6 / packets);
   const Render primary = render("lists_primary", {"--primary-only"});
   EXPECT_EQ(primary.stats["lists"]["walk_ms"].get<double>(), 0.0);
   EXPECT_EQ(primary.stats["lists"]["binning_ms"].get<double>(), 0.0);
