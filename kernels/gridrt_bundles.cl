@@ -112,7 +112,7 @@ inline __attribute__((always_inline)) void gr_bundle_packet(const GrRays16* r, f
     GrHits16 best;
     gr_pe_closest16(r, pe, tmin, tmax, t_enter, t_exit, active, o->any_hit, packet_box,
                     cull.enabled != 0.0f, &seg, &best, &m.tests);
-    m.hit = gr_store_packet_hits(&best, o, out, (int16)first + GR_LANE_INDEX16);
+    m.hit = gr_store_packet_hits(&best, o, out, (int16)0, first);
 #endif
   }
   m.pierced = gr_lane_bits16(pierced);

@@ -71,5 +71,40 @@ TEST(InterruptOrder, InPeOrderThePesAfterAHitSkipTheRay) {
       << " up to the winners";
 }
 
+// The camera path in one work-group after another: the bundles put each pixel's nearer PEs
+// first (camera_bundles.h), so the PEs behind a pixel's hit find its key set and skip it.
+TEST(InterruptOrder, InTaskOrderTheCameraPathSkipsThePesBehindAHit) {
+  const char* units = std::getenv("POCL_MAX_PTHREAD_COUNT");
+  ASSERT_TRUE(units && std::strcmp(units, "1") == 0)
+      << "run through ctest, which sets POCL_MAX_PTHREAD_COUNT=1";
+  if (listDevices().empty()) GTEST_SKIP() << "no OpenCL device: install pocl-opencl-icd";
+  ClRuntime runtime("");
+  Scene scene = loadGltfFile(test::modelScene("bunny_res4.glb"));
+  const std::vector<GrTriangle> tris = prepareTriangles(scene);
+  const UniformGrid grid = buildUniformGrid(tris, sceneBounds(scene), GridSettings{});
+  const Camera camera = scene.has_camera ? scene.camera : defaultCamera(sceneBounds(scene));
+  const int w = 160, h = 120;
+  const PinholeView view = PinholeView::of(camera, w, h, PixelWindow{});
+  std::vector<GrRay> rays;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) rays.push_back(cameraRay(camera, w, h, i, j, 0.5f, 0.5f));
+  GridRtIntersector plain(runtime, grid, PeInterrupt::Off);
+  GridRtIntersector interrupt(runtime, grid, PeInterrupt::CameraRays);
+  RayDiagnostics all, skipping;
+  std::vector<GrHit> all_hits, skipping_hits;
+  plain.intersectPrimary(view, rays, all_hits, &all);
+  interrupt.intersectPrimary(view, rays, skipping_hits, &skipping);
+  EXPECT_EQ(test::hitMismatches(all_hits, skipping_hits, "camera interrupt"), 0u);
+  EXPECT_GT(interrupt.counters().skipped_pairs, 0u) << "the interrupt skipped nothing";
+  EXPECT_EQ(skipping.tests, all.tests);
+  uint64_t to_winners = 0;
+  for (int tests : all.tests) to_winners += uint64_t(tests);
+  const uint64_t every = plain.counters().tests, left = interrupt.counters().tests;
+  EXPECT_GE(left, to_winners);
+  EXPECT_GE(double(every - left), kInOrderSkipShare * double(every - to_winners))
+      << every << " tests in all, " << left << " left by the interrupt, " << to_winners
+      << " up to the winners";
+}
+
 }  // namespace
 }  // namespace gridrt
