@@ -83,8 +83,8 @@ def chart_packets(rows, path):
                     label=r["part"] if i == 0 else None)
             bottom += r["part_ns_per_packet"]
     ax.set_yticks(range(len(scenes)), scenes)
-    ax.set(xlabel="device ns a 16-lane packet (wall, all cores)",
-           title="A PE packet's cost by part (probe stages, medians of rounds in turns)")
+    ax.set(xlabel="device ns a 16-lane packet (wall time, all cores)",
+           title="A PE packet's cost by part (GR_PACKET_PROBE stages)")
     ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
