@@ -24,12 +24,6 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 
 class InterruptBatches : public test::DefaultSceneTest {
  protected:
-  // A point inside the scene's box (shrunk by a tenth on each side).
-  glm::vec3 inside(std::mt19937& rng) const {
-    std::uniform_real_distribution<float> u(0.1f, 0.9f);
-    const Bounds b = sceneBounds(scene_);
-    return b.lo + glm::vec3(u(rng), u(rng), u(rng)) * (b.hi - b.lo);
-  }
   // Rays from points inside the box in random directions.
   std::vector<GrRay> randomRays(unsigned seed, size_t n) const {
     std::mt19937 rng(seed);

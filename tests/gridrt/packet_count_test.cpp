@@ -20,14 +20,7 @@ namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr uint64_t kLanes = GR_PACKET_LANES;
 
-class PacketCount : public test::DefaultSceneTest {
- protected:
-  glm::vec3 inside(std::mt19937& rng) const {
-    std::uniform_real_distribution<float> u(0.1f, 0.9f);
-    const Bounds b = sceneBounds(scene_);
-    return b.lo + glm::vec3(u(rng), u(rng), u(rng)) * (b.hi - b.lo);
-  }
-};
+using PacketCount = test::DefaultSceneTest;
 
 TEST_F(PacketCount, ListBatchOfOneOctantRunsEveryPesRaysInSixteens) {
   const UniformGrid grid = buildUniformGrid(triangles_, sceneBounds(scene_), GridSettings{});

@@ -1,11 +1,15 @@
 // A test on the built-in default scene with an OpenCL device (skipped without one): the
-// runtime, the scene and its prepared triangles, made fresh for each test.
+// runtime, the scene and its prepared triangles, made fresh for each test; random points
+// inside the scene's box.
 #pragma once
 #include <gtest/gtest.h>
 
+#include <glm/glm.hpp>
 #include <memory>
+#include <random>
 #include <vector>
 
+#include "bounds.h"
 #include "cl_runtime.h"
 #include "default_scene.h"
 #include "prepared_triangles.h"
@@ -19,6 +23,12 @@ class DefaultSceneTest : public ::testing::Test {
     runtime_ = std::make_unique<ClRuntime>("");
     scene_ = makeDefaultScene();
     triangles_ = prepareTriangles(scene_);
+  }
+  // A point inside the scene's box (shrunk by a tenth on each side).
+  glm::vec3 inside(std::mt19937& rng) const {
+    std::uniform_real_distribution<float> u(0.1f, 0.9f);
+    const Bounds b = sceneBounds(scene_);
+    return b.lo + glm::vec3(u(rng), u(rng), u(rng)) * (b.hi - b.lo);
   }
   std::unique_ptr<ClRuntime> runtime_;
   Scene scene_;
