@@ -15,7 +15,7 @@
  * when first_hit_key (per bundle ray, the int bits of the smallest t of a hit) is below its
  * own t_enter.
  *
- * GR_PACKET_PROBE (0 unless the build options set it; tools/packet_cost.sh) cuts every
+ * GR_PACKET_PROBE (0 unless the build options set it; `bench.py packets`) cuts every
  * packet short to measure its fixed cost by parts: 1 the dispatch and task read only, 2 the
  * ray loads and the masks' store, 3 + the slab test and the interrupt keys, 4 + the
  * packet's culling box and segment; the triangle tests and hit stores are what the full
@@ -112,7 +112,8 @@ inline __attribute__((always_inline)) void gr_bundle_packet(const GrRays16* r, f
     GrHits16 best;
     gr_pe_closest16(r, pe, tmin, tmax, t_enter, t_exit, active, o->any_hit, packet_box,
                     cull.enabled != 0.0f, &seg, &best, &m.tests);
-    m.hit = gr_store_packet_hits(&best, o, out, (int16)0, first);
+    m.hit = gr_store_packet_hits(&best, o, out);
+    if (interrupt && m.hit) gr_lower_consecutive_keys(&best, o->first_hit_key + first);
 #endif
   }
   m.pierced = gr_lane_bits16(pierced);

@@ -97,7 +97,8 @@ __kernel __attribute__((reqd_work_group_size(GR_PE_LOCAL_SIZE, 1, 1))) void grid
     GrHits16 best;
     gr_pe_closest16(&r16, &pe, tmin, tmax, t_enter, t_exit, active, any_hit, (float4)0.0f, 0, &seg,
                     &best, &m.tests);
-    m.hit = gr_store_packet_hits(&best, &o, out, ray16, -1);
+    m.hit = gr_store_packet_hits(&best, &o, out);
+    if (interrupt && m.hit) gr_lower_gathered_keys(&best, m.hit, first_hit_key, ray16);
   }
   if (m.hit | m.skipped) vstore16(ray16, 0, out_ray + out);
   masks[packet_index] = m;

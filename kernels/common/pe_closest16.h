@@ -239,51 +239,50 @@ inline __attribute__((always_inline)) void gr_pe_closest16(
 
 /* Phase 1's output for one packet, for both PE kernels: where a lane hits, the packet's
  * t, prim, u and v planes go whole to its lanes [out, out + 16) of the result planes
- * (GR_RESULT_*, each lanes_total long). With interrupt, each hitting lane lowers
- * first_hit_key[key_of lane] to its hit's t (as int bits): a later PE is skipped only when
- * it starts beyond a hit, so one starting exactly at it (a hit on the shared boundary) still
- * runs and an exact tie there goes to the lower triangle index, whichever PE runs first.
- * key_first >= 0: the keys of the lanes are first_hit_key[key_first + lane] (key_of unused).
- * Returns the hit mask. */
+ * (GR_RESULT_*, each lanes_total long). Returns the hit mask. */
 inline __attribute__((always_inline)) int gr_store_packet_hits(const GrHits16* best,
-                                                               const GrPacketOutput* o, int out,
-                                                               int16 key_of, int key_first) {
-  const float16 best_t = best->t, best_u = best->u, best_v = best->v;
-  const int16 best_prim = best->prim;
+                                                               const GrPacketOutput* o, int out) {
+  const int hit = gr_lane_bits16(best->prim >= 0);
+  if (!hit) return 0;
   __global float* results = o->results;
   const size_t lanes_total = (size_t)o->lanes_total;
-  const int interrupt = o->interrupt;
-  __global int* first_hit_key = o->first_hit_key;
-  const int hit = gr_lane_bits16(best_prim >= 0);
-  if (!hit) return 0;
-  vstore16(best_t, 0, results + GR_RESULT_T * lanes_total + out);
-  vstore16(best_prim, 0, (__global int*)(results + GR_RESULT_PRIM * lanes_total) + out);
-  vstore16(best_u, 0, results + GR_RESULT_U * lanes_total + out);
-  vstore16(best_v, 0, results + GR_RESULT_V * lanes_total + out);
-  if (interrupt && key_first >= 0) {
-    /* The lanes' keys are consecutive (key_of = key_first + lane): one load and one store
-     * of all 16, the lanes without a smaller hit writing back the key just read. Racing
-     * another PE's store, that may undo its smaller key: as below, it only skips less.
-     * Against the lane-by-lane loop below, the camera kernel's device time 0.92x (bunny
-     * 1280x960 and bunny_res4 320x240, docs/performance.md). */
-    __global int* at = first_hit_key + key_first;
-    const int16 old = vload16(0, at), t_bits = as_int16(best_t);
-    const int16 lower = (best_prim >= 0) & (t_bits < old);
-    if (any(lower)) vstore16(select(old, t_bits, lower), 0, at);
-  } else if (interrupt) {
-    /* A plain load and store, not atomic_min: a key only ever holds the t of a real
-     * in-voxel hit of its ray, so whichever store survives a race, a PE it skips starts
-     * beyond a hit and cannot hold the closest one; a lost smaller key only skips less.
-     * The locked compare-and-swap loop PoCL makes of atomic_min was 8.7 % of the camera
-     * kernel's samples (perf, bunny 1280x960). */
-    int keys[16], index[16];
-    vstore16(as_int16(best_t), 0, keys);
-    vstore16(key_of, 0, index);
-    for (int k = 0; k < 16; ++k)
-      if ((hit & (1 << k)) && keys[k] < first_hit_key[index[k]])
-        first_hit_key[index[k]] = keys[k];
-  }
+  vstore16(best->t, 0, results + GR_RESULT_T * lanes_total + out);
+  vstore16(best->prim, 0, (__global int*)(results + GR_RESULT_PRIM * lanes_total) + out);
+  vstore16(best->u, 0, results + GR_RESULT_U * lanes_total + out);
+  vstore16(best->v, 0, results + GR_RESULT_V * lanes_total + out);
   return hit;
+}
+
+/* The interrupt's keys after a packet's hits: each hitting lane lowers its ray's key to its
+ * hit's t (as int bits): a later PE is skipped only when it starts beyond a hit, so one
+ * starting exactly at it (a hit on the shared boundary) still runs and an exact tie there
+ * goes to the lower triangle index, whichever PE runs first. Plain loads and stores, not
+ * atomic_min: a key only ever holds the t of a real in-voxel hit of its ray, so whichever
+ * store survives a race, a PE it skips starts beyond a hit and cannot hold the closest one;
+ * a lost smaller key only skips less. The locked compare-and-swap loop PoCL makes of
+ * atomic_min was 8.7 % of the camera kernel's samples (perf, bunny 1280x960). */
+
+/* Lanes whose keys lie anywhere: lane k's at first_hit_key[key_of[k]] (the list kernel). */
+inline __attribute__((always_inline)) void gr_lower_gathered_keys(const GrHits16* best, int hit,
+                                                                  __global int* first_hit_key,
+                                                                  int16 key_of) {
+  int keys[16], index[16];
+  vstore16(as_int16(best->t), 0, keys);
+  vstore16(key_of, 0, index);
+  for (int k = 0; k < 16; ++k)
+    if ((hit & (1 << k)) && keys[k] < first_hit_key[index[k]]) first_hit_key[index[k]] = keys[k];
+}
+
+/* Lanes whose keys are consecutive, lane k's at keys[k] (the bundle kernel): one load and one
+ * store of all 16, the lanes without a smaller hit writing back the key just read (racing
+ * another PE's store, that may undo its smaller key: it only skips less). Against the
+ * lane-by-lane loop above, the camera kernel's device time 0.92x (bunny 1280x960 and
+ * bunny_res4 320x240, docs/performance.md). */
+inline __attribute__((always_inline)) void gr_lower_consecutive_keys(const GrHits16* best,
+                                                                     __global int* keys) {
+  const int16 old = vload16(0, keys), t_bits = as_int16(best->t);
+  const int16 lower = (best->prim >= 0) & (t_bits < old);
+  if (any(lower)) vstore16(select(old, t_bits, lower), 0, keys);
 }
 
 #endif
