@@ -98,11 +98,7 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
   frame.times = FrameTimes{};
   frame.refined_pixels = 0;
   frame.passes = 0;
-  resizeFaultedIn(radiance_, pixels);
-  parallelFor(int(0), int(fh), [&](int y) {
-    std::fill(radiance_.begin() + size_t(y) * fw, radiance_.begin() + size_t(y + 1) * fw,
-              glm::vec3(0.0f));
-  });
+  radiance_.clear(pixels);
   if (settings_.want_alpha) coverage_.reset(pixels);
   if (settings_.want_aovs || settings_.want_diagnostics) {
     const bool diag = settings_.want_diagnostics;
@@ -129,7 +125,7 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     // Only the output window's pixels are refined; the ring around it (film_window_) holds
     // the centres of their neighbours outside it.
     auto differs = [&](int p, int q) {
-      glm::vec3 d = glm::abs(radiance_[p] - radiance_[q]);
+      glm::vec3 d = glm::abs(radiance_.at(p) - radiance_.at(q));
       return std::max({d.x, d.y, d.z}) > settings_.aa_threshold;
     };
     // Each slice lists the pixels of its rows, and the lists follow one another in row
@@ -151,7 +147,7 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     const int extra = std::max(1, settings_.aa_samples);
     const float keep = 1.0f / float(extra + 1);
     // The centre becomes one of extra+1 samples (after every slice has read its neighbours).
-    parallelFor(size_t(0), refine.size(), [&](size_t k) { radiance_[refine[k]] *= keep; });
+    parallelFor(size_t(0), refine.size(), [&](size_t k) { radiance_.scale(refine[k], keep); });
     frame.refined_pixels = refine.size();
     // The refined pixels in passes of at most max_pass_rays samples (at least one pixel).
     const size_t per_pass = std::max<size_t>(1, settings_.max_pass_rays / size_t(extra));
@@ -159,7 +155,6 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
     for (size_t k = 0; k < passes; ++k) {
       const size_t first = k * per_pass, last = std::min(refine.size(), first + per_pass);
       window_pixels_.assign(refine.begin() + first, refine.begin() + last);
-      window_pixels_width_ = 0;  // not a band
       renderPass(frame, extra, 1, keep, nullptr, passProgress(progress, int(k), int(passes)));
     }
   }
@@ -167,10 +162,7 @@ void Renderer::render(Frame& frame, const std::function<void(int, int)>& progres
   frame.film.width = fw;
   frame.film.height = fh;
   frame.film.background = settings_.background;
-  frame.film.rgb.resize(pixels * 3);
-  parallelFor(0LL, (long long)(pixels), [&](long long p) {
-    for (int c = 0; c < 3; ++c) frame.film.rgb[3 * p + c] = radiance_[p][c];
-  });
+  radiance_.moveInto(frame.film.rgb);
   if (settings_.want_alpha)
     frame.film.alpha = coverage_.alpha();
   else
@@ -210,17 +202,22 @@ void Renderer::renderInBands(Frame& frame, const PixelWindow& window, int spp, i
   for (int band = 0; band < bands; ++band) {
     const PixelWindow part{window.x0, window.y0 + band * rows, window.x1,
                            std::min(window.y1, window.y0 + (band + 1) * rows)};
-    if (window_pixels_width_ != settings_.width || window_pixels_band_ != part) {
-      window_pixels_.resize(size_t(part.width()) * part.height());
+    if (band_pixels_.size() < size_t(bands)) band_pixels_.resize(bands);
+    BandPixels& kept = band_pixels_[band];
+    if (kept.image_width != settings_.width || kept.band != part) {
+      kept.pixels.resize(size_t(part.width()) * part.height());
       parallelFor(int(part.y0), int(part.y1), [&](int y) {
         for (int x = part.x0; x < part.x1; ++x)
-          window_pixels_[size_t(y - part.y0) * part.width() + (x - part.x0)] =
+          kept.pixels[size_t(y - part.y0) * part.width() + (x - part.x0)] =
               (y - film_window_.y0) * film_window_.width() + (x - film_window_.x0);
       });
-      window_pixels_band_ = part;
-      window_pixels_width_ = settings_.width;
+      kept.band = part;
+      kept.image_width = settings_.width;
     }
+    // The band's pixels lent to window_pixels_ for its pass, and kept for the next frame.
+    window_pixels_.swap(kept.pixels);
     renderPass(frame, spp, first_sample, weight, &part, passProgress(progress, band, bands));
+    window_pixels_.swap(kept.pixels);
   }
 }
 

@@ -17,6 +17,7 @@
 #include "gltf_brdf.h"
 #include "hit_surfaces.h"
 #include "intersector.h"
+#include "pixel_radiance.h"
 #include "pixel_window.h"
 #include "plain_shading.h"
 #include "sample_coverage.h"
@@ -298,13 +299,17 @@ class Renderer {
   const PixelWindow output_window_;
   const PixelWindow film_window_;
   std::vector<int> window_pixels_;
-  // The band window_pixels_ holds (renderInBands keeps it from frame to frame), and the
-  // image width it was made for; width 0 when it holds something else.
-  PixelWindow window_pixels_band_;
-  int window_pixels_width_ = 0;
+  // Each band's pixels (renderInBands), kept from frame to frame with the band and the
+  // image width they were made for: a frame of three bands made them again every frame.
+  struct BandPixels {
+    PixelWindow band;
+    int image_width = 0;
+    std::vector<int> pixels;
+  };
+  std::vector<BandPixels> band_pixels_;
   std::vector<int> block_order_;  // the window's pixels in 4x4 blocks (pixel_blocks.h)
   int block_order_width_ = 0, block_order_height_ = 0;  // the window block_order_ is for
-  std::vector<glm::vec3> radiance_;                     // per film pixel accumulator
+  PixelRadiance radiance_;                              // per film pixel accumulator
   SampleCoverage coverage_;  // per film pixel: camera samples and their hits (want_alpha)
 };
 

@@ -35,12 +35,12 @@ void Renderer::addPassRadiance(int depths, PrimaryPaths primary) {
       const std::vector<PathRay>& ps = g.paths;
       addInPixelRuns(
           ps.size(), [&](size_t i) { return ps[i].pixel; },
-          [&](size_t i) { radiance_[ps[i].pixel] += local[i]; });
+          [&](size_t i) { radiance_.add(ps[i].pixel, local[i]); });
     } else if (!g.radiance_in_pixels) {
       // Primary rays: each pixel's samples are consecutive, pixels distinct.
       parallelFor(0LL, (long long)((local.size() / primary.spp)), [&](long long k) {
         for (int s = 0; s < primary.spp; ++s)
-          radiance_[window_pixels_[k]] += local[size_t(k) * primary.spp + s];
+          radiance_.add(window_pixels_[k], local[size_t(k) * primary.spp + s]);
       });
     }
     const ShadowRay* shadows = shadows_.data() + g.first_shadow;
@@ -48,7 +48,7 @@ void Renderer::addPassRadiance(int depths, PrimaryPaths primary) {
     addInPixelRuns(
         g.shadow_count, [&](size_t k) { return shadows[k].pixel; },
         [&](size_t k) {
-          if (hits[k].prim < 0) radiance_[shadows[k].pixel] += shadows[k].radiance;
+          if (hits[k].prim < 0) radiance_.add(shadows[k].pixel, shadows[k].radiance);
         });
   }
 }

@@ -114,7 +114,7 @@ size_t Renderer::shadeHeadlight(int depth, const std::vector<GrRay>& rays, Prima
               std::fabs(glm::dot(surface.normal, glm::vec3(ray.dx, ray.dy, ray.dz)));
     }
     if (into_pixels)
-      radiance_[window_pixels_[i]] += value;
+      radiance_.add(window_pixels_[i], value);
     else
       local[i] = value;
   });

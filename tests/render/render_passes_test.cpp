@@ -165,5 +165,36 @@ TEST_F(RenderPasses, RepeatedFramesOfOneRendererAreEqual) {
   }
 }
 
+// One renderer whose bands change from frame to frame: a frame of one jittered sample a
+// pixel (the viewer's progressive frames) cuts the rows into other bands than a frame of
+// all three samples. Each band's pixel list is kept between frames, so it must be made
+// again when its band changes; the frames go into one Frame, whose film buffer the
+// renderer takes back for the next frame's radiance.
+TEST_F(RenderPasses, BandsThatChangeBetweenFramesGiveTheirOwnPixels) {
+  RenderSettings s = small();
+  s.spp = 3;
+  s.max_pass_rays = 2000;
+  GridRtIntersector gridrt(*runtime_, grid_, PeInterrupt::Off);
+  Renderer fresh_all(scene_, scene_.camera, gridrt, s);
+  Frame all_samples;
+  fresh_all.render(all_samples);
+  RenderSettings one_sample = s;
+  one_sample.single_sample = 1;
+  Renderer fresh_one(scene_, scene_.camera, gridrt, one_sample);
+  Frame sample_one;
+  fresh_one.render(sample_one);
+  EXPECT_EQ(all_samples.passes, 25u);  // 97 rows of 450 samples
+  EXPECT_EQ(sample_one.passes, 8u);    // 97 rows of 150
+
+  Renderer renderer(scene_, scene_.camera, gridrt, s);
+  Frame frame;
+  for (const int sample : {-1, 1, -1, 1}) {
+    renderer.setSingleSample(sample);
+    renderer.render(frame);
+    expectSameFrame(sample < 0 ? all_samples : sample_one, frame,
+                    sample < 0 ? "all samples after one" : "one sample after all");
+  }
+}
+
 }  // namespace
 }  // namespace gridrt
