@@ -95,28 +95,76 @@ size_t Renderer::shadeHeadlight(int depth, const std::vector<GrRay>& rays, Prima
   // Null without vertex normals (hit_surfaces.h).
   const ShadingTriangle* smooth_triangles =
       shading_triangles_.empty() ? nullptr : shading_triangles_.data();
-  // The primary generation only, in ray order. One plain loop: the Whitted loop's per-ray
-  // bookkeeping (paths, shading order, blocks of 16) cost more than this shading does.
+  // The primary generation only, in ray order, in slices of kShadeChunkRays: a miss is
+  // shaded at once, the hits 16 at a time, their surfaces in lanes (computeSurfaces) and
+  // |n . d| in lanes; base colours and normal maps, which only some materials have, hit by
+  // hit. Every value is primarySurface's, bit for bit (HeadlightShading.*).
   // With one sample a pixel (pixels distinct, in ray order), each ray's radiance goes
   // straight into its pixel: the same addition addPassRadiance would make, a pass less.
   const glm::vec3 weight(primary.weight);
+  const glm::vec3 background = weight * settings_.background;
   const bool into_pixels = primary.spp == 1;
   g.radiance_in_pixels = into_pixels;
-  parallelFor(0LL, (long long)(n), [&](long long i) {
-    const GrHit& hit = g.hits[i];
-    glm::vec3 value;
-    if (hit.prim < 0) {
-      value = weight * settings_.background;
-    } else {
-      const GrRay& ray = rays[i];
-      const PrimarySurface surface = primarySurface(hit, ray, smooth_triangles);
-      value = weight * surface.base_color *
-              std::fabs(glm::dot(surface.normal, glm::vec3(ray.dx, ray.dy, ray.dz)));
-    }
+  auto store = [&](size_t i, const glm::vec3& value) {
     if (into_pixels)
       radiance_.add(window_pixels_[i], value);
     else
       local[i] = value;
+  };
+  const long long chunks = (long long)((n + kShadeChunkRays - 1) / kShadeChunkRays);
+  // Handed out dynamically: the hits, which cost most, crowd where the model is.
+  parallelForDynamic(0LL, chunks, 1LL, [&](long long chunk) {
+    SurfaceLanes lanes;
+    size_t block_ray[kSurfaceLanes];
+    alignas(64) float br[kSurfaceLanes], bg[kSurfaceLanes], bb[kSurfaceLanes];
+    alignas(64) float cosine[kSurfaceLanes];
+    auto shadeBlock = [&](int count) {
+      for (int k = count; k < kSurfaceLanes; ++k) {  // a block's last lanes: copies of lane 0
+        lanes.ox[k] = lanes.ox[0], lanes.oy[k] = lanes.oy[0], lanes.oz[k] = lanes.oz[0];
+        lanes.dx[k] = lanes.dx[0], lanes.dy[k] = lanes.dy[0], lanes.dz[k] = lanes.dz[0];
+        lanes.t[k] = lanes.t[0], lanes.tri[k] = lanes.tri[0];
+      }
+      computeSurfaces(smooth_triangles, geometric_normals_.data(), lanes);
+      for (int k = 0; k < count; ++k) {
+        const int material = scene_.material_of[lanes.tri[k]];
+        if (surface_textures_.hasNormalMap(material)) applyNormalMap(lanes, k, cone_origin_);
+        glm::vec3 base = scene_.materials[material].base_color;
+        if (surface_textures_.varies(material)) {
+          const glm::vec3 n(lanes.nx[k], lanes.ny[k], lanes.nz[k]);
+          const glm::vec3 d(lanes.dx[k], lanes.dy[k], lanes.dz[k]);
+          base = surface_textures_
+                     .at(lanes.tri[k], glm::vec3(lanes.px[k], lanes.py[k], lanes.pz[k]),
+                         coneWidth(cone_origin_, lanes.t[k]), glm::dot(n, d))
+                     .base_color;
+        }
+        br[k] = weight.x * base.x, bg[k] = weight.y * base.y, bb[k] = weight.z * base.z;
+      }
+#pragma omp simd
+      for (int k = 0; k < kSurfaceLanes; ++k)
+        cosine[k] = std::fabs(
+            dot3(lanes.nx[k], lanes.ny[k], lanes.nz[k], lanes.dx[k], lanes.dy[k], lanes.dz[k]));
+      for (int k = 0; k < count; ++k)
+        store(block_ray[k], glm::vec3(br[k] * cosine[k], bg[k] * cosine[k], bb[k] * cosine[k]));
+    };
+    const size_t begin = size_t(chunk) * kShadeChunkRays;
+    const size_t end = std::min(n, begin + kShadeChunkRays);
+    int count = 0;
+    for (size_t i = begin; i < end; ++i) {
+      const GrHit& hit = g.hits[i];
+      if (hit.prim < 0) {
+        store(i, background);
+        continue;
+      }
+      const GrRay& ray = rays[i];
+      const int k = count++;
+      block_ray[k] = i;
+      lanes.ox[k] = ray.ox, lanes.oy[k] = ray.oy, lanes.oz[k] = ray.oz;
+      lanes.dx[k] = ray.dx, lanes.dy[k] = ray.dy, lanes.dz[k] = ray.dz;
+      lanes.t[k] = hit.t;
+      lanes.tri[k] = hit.prim;
+      if (count == kSurfaceLanes) shadeBlock(count), count = 0;
+    }
+    if (count > 0) shadeBlock(count);
   });
   frame.times.shade_ms += clock.ms();
   g.first_shadow = shadow_offset;

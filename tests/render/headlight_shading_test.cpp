@@ -16,6 +16,7 @@
 #include "default_scene_fixture.h"
 #include "gridrt_intersector.h"
 #include "hit_surfaces.h"
+#include "reference_intersector.h"
 #include "renderer.h"
 #include "uniform_grid.h"
 
@@ -93,6 +94,74 @@ TEST_F(HeadlightShading, EachPixelIsItsHitsBaseColourTimesCosineOrTheBackground)
   EXPECT_EQ(wrong, 0u) << "of " << hits << " hits and " << misses << " misses; largest error "
                        << largest;
   std::printf("largest error against the double recomputation: %.3g\n", largest);
+}
+
+// A quad whose base colour comes from a 4 x 4 texture and whose shading normal from a
+// tilted normal map, beside one plain quad, seen at a slant: the shading's hits go 16 at a
+// time through lanes, and the textures hit by hit, yet every pixel must be what the
+// one-hit surface code (primarySurface, which fills the albedo and shading-normal AOVs)
+// gives, bit for bit: albedo times |n . d| in the renderer's order of operations.
+TEST(HeadlightShadingTextures, EachPixelIsTheOneHitSurfacesAlbedoTimesCosine) {
+  Scene scene;
+  Material textured;
+  textured.base_color = {0.5f, 1.0f, 0.25f};
+  textured.base_color_texture.texture = 0;
+  textured.normal_texture.texture = 1;
+  Material plain;
+  plain.base_color = {0.9f, 0.3f, 0.6f};
+  shapes::addRect(scene, {0.5f, 0.5f, 0.0f}, {0.5f, 0.0f, 0.0f}, {0.0f, 0.5f, 0.0f},
+                  shapes::addMaterial(scene, textured));
+  shapes::addRect(scene, {1.6f, 0.5f, 0.0f}, {0.5f, 0.0f, 0.0f}, {0.0f, 0.5f, 0.0f},
+                  shapes::addMaterial(scene, plain));
+  for (const glm::vec3& q : scene.positions) scene.texcoords[0].push_back({q.x, 1.0f - q.y});
+  SceneImage colours, normals;
+  TexelLevel level;
+  level.width = level.height = 4;
+  for (int t = 0; t < 16; ++t) level.texels.push_back({t / 15.0f, 1.0f - t / 15.0f, 0.5f, 1.0f});
+  colours.colour.levels.push_back(level);
+  TexelLevel tilt;
+  tilt.width = tilt.height = 1;
+  tilt.texels = {glm::vec4(0.8f, 0.4f, 0.9f, 1.0f)};  // tangent space (0.6, -0.2, 0.8)
+  normals.data.levels.push_back(tilt);
+  scene.images = {colours, normals};
+  for (int image = 0; image < 2; ++image) {
+    Texture texture;
+    texture.image = image;
+    texture.mag_filter = texture.min_filter = TextureFilter::Nearest;
+    scene.textures.push_back(texture);
+  }
+  Camera camera;
+  camera.world = shapes::lookAtWorld({-0.4f, 1.3f, 1.6f}, {1.0f, 0.5f, 0.0f});
+  camera.yfov = 1.0f;
+  ReferenceIntersector reference(scene);
+  RenderSettings settings;
+  settings.width = 77;  // not a multiple of 16: blocks of every fill
+  settings.height = 53;
+  settings.primary_only = true;
+  settings.want_aovs = true;
+  Renderer renderer(scene, camera, reference, settings);
+  Frame frame;
+  renderer.render(frame);
+
+  size_t hits = 0, textured_hits = 0, tilted = 0, wrong = 0;
+  for (int y = 0; y < settings.height; ++y)
+    for (int x = 0; x < settings.width; ++x) {
+      const size_t p = size_t(y) * settings.width + x;
+      const int prim = frame.aovs.primid[p];
+      if (prim < 0) continue;
+      ++hits;
+      textured_hits += scene.material_of[prim] == 0;
+      const GrRay r = cameraRay(camera, settings.width, settings.height, x, y, 0.5f, 0.5f);
+      const float* n = &frame.aovs.shading_normal[3 * p];
+      const float* albedo = &frame.aovs.albedo[3 * p];
+      tilted += std::fabs(n[2]) < 0.99f;
+      const float cosine = std::fabs(dot3(n[0], n[1], n[2], r.dx, r.dy, r.dz));
+      for (int c = 0; c < 3; ++c) wrong += frame.film.rgb[3 * p + c] != albedo[c] * cosine;
+    }
+  EXPECT_GT(textured_hits, 400u);
+  EXPECT_GT(hits - textured_hits, 150u);
+  EXPECT_GT(tilted, 400u) << "the normal map turns the textured quad's normals";
+  EXPECT_EQ(wrong, 0u) << "channels of " << hits << " hits";
 }
 
 }  // namespace
