@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 
 #include "parallel_loops.h"
@@ -592,19 +593,38 @@ void GridRtIntersector::intersectBundles(const std::vector<GrRay>& rays, const R
     }
   }
   if (!fill) {
-    parallelFor(0LL, (long long)(stride), [&](long long b) {
-      // Bundle order jumps about the batch: each ray is fetched kPlaneFetchAhead slots
-      // before it is needed (the waits on these loads were most of the pass).
-      if (size_t(b) + kPlaneFetchAhead < slots) {
-        const int ahead = bundles.ray_of[b + kPlaneFetchAhead];
-        if (ahead >= 0) __builtin_prefetch(&rays[ahead]);
+    // A packet's slots at a time (ray_of's length, so the stride, is a multiple of 16):
+    // its rays gathered into local planes, then each plane's 16 values stored at once.
+    // One value at a time into eight planes, the stores had waited on their lines.
+    static_assert(GR_PACKET_LANES == 16);
+    const bool starts = !check_cover;
+    parallelFor(0LL, (long long)(stride / GR_PACKET_LANES), [&](long long packet) {
+      const size_t b0 = size_t(packet) * GR_PACKET_LANES;
+      alignas(64) float local[GR_PLANES][GR_PACKET_LANES];
+      for (int k = 0; k < GR_PACKET_LANES; ++k) {
+        const size_t b = b0 + size_t(k);
+        // Bundle order jumps about the batch: each ray is fetched kPlaneFetchAhead slots
+        // before it is needed (the waits on these loads were most of the pass).
+        if (b + kPlaneFetchAhead < slots) {
+          const int ahead = bundles.ray_of[b + kPlaneFetchAhead];
+          if (ahead >= 0) __builtin_prefetch(&rays[ahead]);
+        }
+        const int r = b < slots ? bundles.ray_of[b] : -1;
+        const GrRay& ray = r >= 0 ? rays[r] : common;
+        local[GR_PLANE_DX][k] = r >= 0 ? ray.dx : 0.0f;
+        local[GR_PLANE_DY][k] = r >= 0 ? ray.dy : 0.0f;
+        local[GR_PLANE_DZ][k] = r >= 0 ? ray.dz : 0.0f;
+        local[GR_PLANE_OX][k] = ray.ox;
+        local[GR_PLANE_OY][k] = ray.oy;
+        local[GR_PLANE_OZ][k] = ray.oz;
+        local[GR_PLANE_TMIN][k] = ray.tmin;
+        local[GR_PLANE_TMAX][k] = ray.tmax;
       }
-      const int r = size_t(b) < slots ? bundles.ray_of[b] : -1;
-      const GrRay& ray = r >= 0 ? rays[r] : common;
-      planes[GR_PLANE_DX * stride + b] = r >= 0 ? ray.dx : 0.0f;
-      planes[GR_PLANE_DY * stride + b] = r >= 0 ? ray.dy : 0.0f;
-      planes[GR_PLANE_DZ * stride + b] = r >= 0 ? ray.dz : 0.0f;
-      if (!check_cover) writeStarts(b, ray);
+      for (int q : {GR_PLANE_DX, GR_PLANE_DY, GR_PLANE_DZ})
+        std::memcpy(planes + size_t(q) * stride + b0, local[q], sizeof local[q]);
+      if (starts)
+        for (int q : {GR_PLANE_OX, GR_PLANE_OY, GR_PLANE_OZ, GR_PLANE_TMIN, GR_PLANE_TMAX})
+          std::memcpy(planes + size_t(q) * stride + b0, local[q], sizeof local[q]);
     });
   }
   // Shadow rays (no frame) never share an origin: their starts are written above.
