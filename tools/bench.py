@@ -30,13 +30,7 @@ import tempfile
 
 from bench_farm import bench_farm, chart_farm
 from bench_packets import bench_packets, chart_packets
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-MODELS = os.path.join(ROOT, "scenes", "models")
-# GRIDRT_BINARY: another build's gridrt (a machine with another OpenCL device, say).
-GRIDRT = os.environ.get("GRIDRT_BINARY") or os.path.join(ROOT, "build", "gridrt")
-# Embree 3 on the same rays, built where Embree is installed (tools/embree_peer.cpp).
-EMBREE_PEER = os.path.join(ROOT, "build", "tools", "embree_peer")
+from bench_runner import EMBREE_PEER, GRIDRT, MODELS, ROOT, gridrt_stats
 
 # The paper's PE counts and the grids that give them (Nery et al., Tables III/IV).
 PAPER_GRIDS = [(1, "1,1,1"), (2, "2,1,1"), (4, "2,2,1"), (8, "2,2,2"), (12, "3,2,2"),
@@ -53,14 +47,7 @@ PHASE_NAMES = {"walk_ms": "list walk", "binning_ms": "binning", "bundling_ms": "
 
 
 def run(args, frames):
-    with tempfile.TemporaryDirectory() as tmp:
-        stats = os.path.join(tmp, "stats.json")
-        # A PNG: written after the timed frames, and without the image module (OpenImageIO).
-        cmd = [GRIDRT, *args, "--repeat", str(frames), "-q", "-o", os.path.join(tmp, "out.png"),
-               "--stats-json", stats]
-        subprocess.run(cmd, check=True)
-        with open(stats) as f:
-            s = json.load(f)
+    s = gridrt_stats(args, frames)
     # The tracing time by ray kind, flattened (trace_primary_ms, ...) so medians() takes it,
     # and gridrt's list time by host pass (walk_ms, binning_ms, bundling_ms).
     for key, value in s.get("trace", {}).items():
@@ -775,21 +762,7 @@ SINGLE_SIZES = [(640, 480), (1920, 1080), (3840, 2160)]
 
 
 def run_single(args):
-    import time
-    with tempfile.TemporaryDirectory() as tmp:
-        stats = os.path.join(tmp, "stats.json")
-        cmd = [GRIDRT, *args, "-q", "-o", os.path.join(tmp, "out.png"), "--stats-json", stats]
-        start = time.monotonic()
-        child = subprocess.Popen(cmd)
-        _, status, usage = os.wait4(child.pid, 0)
-        wall = time.monotonic() - start
-        if status != 0:
-            raise subprocess.CalledProcessError(status, cmd)
-        with open(stats) as f:
-            s = json.load(f)
-    s["wall_s"] = wall
-    s["peak_mb"] = usage.ru_maxrss / 1024.0  # kilobytes on Linux
-    return s
+    return gridrt_stats(args)
 
 
 def bench_single(frames):

@@ -17,9 +17,9 @@ import subprocess
 import tempfile
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from bench_runner import BUILD_GRIDRT, ROOT, gridrt_stats
+
 FARM = os.path.join(ROOT, "tools", "gridrt-farm")
-GRIDRT = os.path.join(ROOT, "build", "gridrt")
 OVERHEAD_JOB = ["--width", "64", "--height", "48", "--tiles", "8x8"]
 THROUGHPUT_FRAME = ["--width", "1280", "--height", "960", "--spp", "16"]
 THROUGHPUT_TILES = "4x4"
@@ -41,16 +41,8 @@ def run_farm(args, workers):
 
 
 def run_alone(args):
-    with tempfile.TemporaryDirectory() as tmp:
-        stats = os.path.join(tmp, "stats.json")
-        started = time.monotonic()
-        subprocess.run([GRIDRT, *args, "-q", "-o", os.path.join(tmp, "out.png"),
-                        "--stats-json", stats], check=True)
-        wall = time.monotonic() - started
-        with open(stats) as f:
-            s = json.load(f)
-    s["wall_s"] = wall
-    return s
+    # The source tree's build, the one the farm's workers run here (tools/gridrt_farm).
+    return gridrt_stats(args, binary=BUILD_GRIDRT)
 
 
 def load_average():

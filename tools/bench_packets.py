@@ -9,15 +9,10 @@ rounds; a part's cost is the difference of two stages' medians of kernel_device_
 the frame's packets (kernel_packets). The probes' images are wrong by design: only their
 device time is read.
 """
-import json
 import os
 import statistics
-import subprocess
-import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-GRIDRT = os.environ.get("GRIDRT_BINARY") or os.path.join(ROOT, "build", "gridrt")
-MODELS = os.path.join(ROOT, "scenes", "models")
+from bench_runner import MODELS, gridrt_stats
 # Camera rays only: every packet runs the bundle kernel, so every stage cuts all of them.
 SCENES = [
     ("bunny 1280x960 primary",
@@ -36,12 +31,7 @@ def run_stage(args, stage, frames):
         env["GRIDRT_KERNEL_OPTIONS"] = f"-DGR_PACKET_PROBE={stage}"
     else:
         env.pop("GRIDRT_KERNEL_OPTIONS", None)
-    with tempfile.TemporaryDirectory() as tmp:
-        stats = os.path.join(tmp, "stats.json")
-        subprocess.run([GRIDRT, *args, "--repeat", str(frames), "-q", "-o",
-                        os.path.join(tmp, "out.png"), "--stats-json", stats], check=True, env=env)
-        with open(stats) as f:
-            return json.load(f)
+    return gridrt_stats(args, frames, env=env)
 
 
 def bench_packets(frames, rounds):

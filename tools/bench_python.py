@@ -14,13 +14,10 @@ program's frame is its --primary-only frame, whose primary rays take the camera 
 """
 import argparse
 import csv
-import json
 import math
 import os
 import statistics
-import subprocess
 import sys
-import tempfile
 import time
 
 import numpy as np
@@ -30,8 +27,8 @@ sys.path.insert(0, os.path.join(ROOT, "build", "python"))
 sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
 import gridrt  # noqa: E402
 from glb_mesh import read_document, read_triangles  # noqa: E402
+from bench_runner import gridrt_stats  # noqa: E402
 
-GRIDRT = os.environ.get("GRIDRT_BINARY") or os.path.join(ROOT, "build", "gridrt")
 RESULTS = os.path.join(ROOT, "bench", "results", "python.csv")
 
 
@@ -78,12 +75,8 @@ def timed(call, rounds):
 
 
 def command_line_mrays(scene, width, height, rounds):
-    with tempfile.TemporaryDirectory() as folder:
-        stats = os.path.join(folder, "stats.json")
-        subprocess.run([GRIDRT, scene, "-q", "--primary-only", "--width", str(width),
-                        "--height", str(height), "--repeat", str(rounds), "-o",
-                        os.path.join(folder, "out.png"), "--stats-json", stats], check=True)
-        s = json.load(open(stats))
+    s = gridrt_stats([scene, "--primary-only", "--width", str(width), "--height", str(height)],
+                     rounds)
     return s["rays"]["primary"] / (s["frame_ms"] * 1e3), s["frame_ms"]
 
 
