@@ -26,18 +26,8 @@ const ImageCodec* loadCodec() {
     candidates.insert(candidates.end() - 1,
                       (fs::path(self.dli_fname).parent_path() / GRIDRT_IMAGE_CODEC_FILE).string());
   std::string why;
-  std::error_code ec;
-  for (const std::string& path : candidates) {
-    if (!fs::exists(path, ec)) continue;
-    void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!module) {
-      why = dlerror();
-      continue;
-    }
-    auto entry = reinterpret_cast<const ImageCodec* (*)()>(dlsym(module, GRIDRT_IMAGE_CODEC_ENTRY));
-    if (entry) return entry();
-    why = path + ": no " + GRIDRT_IMAGE_CODEC_ENTRY;
-  }
+  if (void* entry = loadModuleEntry(candidates, GRIDRT_IMAGE_CODEC_ENTRY, why))
+    return reinterpret_cast<const ImageCodec* (*)()>(entry)();
   if (why.empty())
     why = "not found beside the executable, in its " GRIDRT_MODULE_DIR_FROM_BIN
           " nor at " GRIDRT_IMAGE_CODEC_PATH;

@@ -1,9 +1,6 @@
 #include "window_module.h"
 
-#include <dlfcn.h>
-
 #include <cstdlib>
-#include <filesystem>
 #include <stdexcept>
 #include <vector>
 
@@ -12,28 +9,16 @@
 namespace gridrt {
 namespace {
 
-namespace fs = std::filesystem;
-
 OpenWindowEntry loadEntry() {
 #ifndef GRIDRT_WINDOW_MODULE_FILE
   throw NoDisplay("gridrt was built without the window module (install libsdl2-dev, rebuild)");
 #else
   const std::vector<std::string> candidates = moduleSearchPaths(
       GRIDRT_WINDOW_MODULE_FILE, GRIDRT_MODULE_DIR_FROM_BIN, GRIDRT_WINDOW_MODULE_PATH);
-  std::error_code ec;
+  // Kept loaded for the life of the process (the window's code runs until exit).
   std::string why;
-  for (const std::string& path : candidates) {
-    if (!fs::exists(path, ec)) continue;
-    // Kept loaded for the life of the process (the window's code runs until exit).
-    void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!module) {
-      why = dlerror();
-      continue;
-    }
-    if (auto entry = reinterpret_cast<OpenWindowEntry>(dlsym(module, GRIDRT_WINDOW_ENTRY)))
-      return entry;
-    why = path + ": no " GRIDRT_WINDOW_ENTRY;
-  }
+  if (void* entry = loadModuleEntry(candidates, GRIDRT_WINDOW_ENTRY, why))
+    return reinterpret_cast<OpenWindowEntry>(entry);
   if (why.empty())
     why = "not found beside the executable, in its " GRIDRT_MODULE_DIR_FROM_BIN
           " nor at " GRIDRT_WINDOW_MODULE_PATH;
