@@ -214,7 +214,8 @@ class Renderer {
   glm::vec3 mappedNormal(const HitSurface& h, const GrHit& hit, const glm::vec3& d,
                          float cone) const;
   // A camera ray's hit: its shading normal (normal-mapped) and base colour (factor times
-  // texture times vertex colour), as the AOVs and the headlight shading take them.
+  // texture times vertex colour), as the AOVs take them (the headlight shading makes the
+  // same values 16 hits at a time).
   struct PrimarySurface {
     glm::vec3 normal, base_color;
   };
