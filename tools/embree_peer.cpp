@@ -17,7 +17,8 @@
 // --whitted: gridrt's own Whitted renderer (host/render/renderer.h, its default settings) with
 // Embree as its intersector, on the scene or without one on gridrt's built-in default
 // scene: the same frame as `gridrt` renders, ray generation, shading and shadow rays
-// included, only the tracing Embree's. -o writes the image.
+// included, only the tracing Embree's. -o writes the image. With --primary-only, the frame
+// gridrt --primary-only renders (camera rays, headlight shading), Embree tracing.
 // --sequence: an animated scene's frames A..B at frame / F seconds (docs/animation.md), each
 // posed, its BVH built anew and one Whitted frame rendered, as gridrt --frames does with
 // its grid; the JSON line lists each frame's pose_ms, build_ms and frame_ms.
@@ -83,7 +84,7 @@ PeerOptions parse(int argc, char** argv) {
                  "--whitted: A:B an animated scene's frames, each posed, built and rendered");
   app.add_option("--fps", o.fps, "--sequence: frames per second")->check(CLI::Range(0.001, 1e6));
   app.add_flag("--primary-only", o.primary_only,
-               "--sequence: primary rays only, headlight shading (as gridrt --primary-only)");
+               "--whitted: primary rays only, headlight shading (as gridrt --primary-only)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -168,6 +169,7 @@ int runWhitted(const PeerOptions& o, const Scene& scene, const Camera& camera,
   settings.width = o.width;
   settings.height = o.height;
   settings.max_depth = o.max_depth;
+  settings.primary_only = o.primary_only;
   settings.want_aovs = false;
   Renderer renderer(scene, camera, embree, settings);
   Frame frame;
