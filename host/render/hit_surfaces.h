@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "gridrt_types.h"
 #include "scene.h"
 
 namespace gridrt {
@@ -90,6 +91,22 @@ struct SurfaceLanes {
   alignas(64) float nx[kSurfaceLanes], ny[kSurfaceLanes], nz[kSurfaceLanes];
   alignas(64) float gx[kSurfaceLanes], gy[kSurfaceLanes], gz[kSurfaceLanes];
   alignas(64) int backface[kSurfaceLanes];
+
+  // Lane k's inputs: `ray` and its hit.
+  void setHit(int k, const GrRay& ray, const GrHit& hit) {
+    ox[k] = ray.ox, oy[k] = ray.oy, oz[k] = ray.oz;
+    dx[k] = ray.dx, dy[k] = ray.dy, dz[k] = ray.dz;
+    t[k] = hit.t;
+    tri[k] = hit.prim;
+  }
+  // A block of `count` hits (at least one): the inputs of the lanes past it, copies of lane 0.
+  void padFrom(int count) {
+    for (int k = count; k < kSurfaceLanes; ++k) {
+      ox[k] = ox[0], oy[k] = oy[0], oz[k] = oz[0];
+      dx[k] = dx[0], dy[k] = dy[0], dz[k] = dz[0];
+      t[k] = t[0], tri[k] = tri[0];
+    }
+  }
 };
 
 // Fills the outputs of `s` from its inputs: surfaceAt in every lane (triangles: the
