@@ -221,11 +221,6 @@ class Renderer {
   };
   PrimarySurface primarySurface(const GrHit& hit, const GrRay& ray,
                                 const ShadingTriangle* smooth_triangles) const;
-  // The base colour of that surface where a camera ray of direction d hits triangle `tri`
-  // at p, t along it (n: its normal-mapped shading normal): the material's, or where it
-  // varies (textures, vertex colours) the value there.
-  glm::vec3 primaryBaseColor(int tri, const glm::vec3& p, float t, const glm::vec3& n,
-                             const glm::vec3& d) const;
   // The same for lane k of `lanes`, written back into its shading normal.
   void applyNormalMap(SurfaceLanes& lanes, int k, float cone) const;
   // The width of a ray cone that left its origin `cone` wide after distance t.
